@@ -1,0 +1,68 @@
+#include "steadylight/output/image_writer.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "steadylight/base/error.h"
+#include "steadylight/output/frame_names.h"
+
+namespace steadylight {
+namespace {
+
+namespace fs = std::filesystem;
+
+Image gradient(int width, int height) {
+    Image image(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) image.at(x, y) = {float(x) / 4, float(y) * 3, 0.25f};
+    return image;
+}
+
+TEST(ImageWriter, FrameNamesHaveFourDigits) {
+    EXPECT_EQ(frame_file_name("out/ball", "ball", 7, "exr"), "out/ball/ball_0007.exr");
+}
+
+TEST(ImageWriter, ExrRoundTripKeepsHalfPrecision) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_roundtrip.exr").string();
+    const Image image = gradient(7, 5);
+    write_exr(path, image);
+    const Image back = read_exr(path);
+    ASSERT_EQ(back.width, 7);
+    ASSERT_EQ(back.height, 5);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(back.pixels[i][c], image.pixels[i][c], 1e-3f * (1 + image.pixels[i][c]));
+    EXPECT_FALSE(fs::exists(path + ".partial"));
+    fs::remove(path);
+}
+
+TEST(ImageWriter, TruncatedExrIsAnInputError) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_truncated.exr").string();
+    write_exr(path, gradient(64, 64));
+    fs::resize_file(path, fs::file_size(path) / 2);
+    EXPECT_THROW(read_exr(path), InputError);
+    fs::remove(path);
+}
+
+TEST(ImageWriter, PngIsWrittenWhole) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_frame.png").string();
+    write_png(path, gradient(8, 8));
+    EXPECT_GT(fs::file_size(path), 8u);
+    EXPECT_FALSE(fs::exists(path + ".partial"));
+    fs::remove(path);
+}
+
+TEST(ImageWriter, WritingIntoAMissingFolderFailsCleanly) {
+    EXPECT_THROW(write_png("/nonexistent/folder/x.png", gradient(2, 2)), std::runtime_error);
+}
+
+TEST(ImageWriter, SrgbCurveIsContinuousAndClamped) {
+    EXPECT_NEAR(linear_to_srgb(0.0031308f), 12.92f * 0.0031308f, 1e-5f);
+    EXPECT_NEAR(linear_to_srgb(0.0031309f), 12.92f * 0.0031308f, 1e-4f);
+    EXPECT_NEAR(linear_to_srgb(7.0f), 1.0f, 1e-6f);
+    EXPECT_EQ(linear_to_srgb(-1.0f), 0.0f);
+    EXPECT_NEAR(linear_to_srgb(0.5f), 0.7354f, 1e-3f);
+}
+
+}  // namespace
+}  // namespace steadylight

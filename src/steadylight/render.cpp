@@ -1,0 +1,118 @@
+#include "steadylight/render.h"
+
+#include <chrono>
+#include <filesystem>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "steadylight/base/error.h"
+#include "steadylight/output/frame_names.h"
+#include "steadylight/output/image_writer.h"
+#include "steadylight/output/progress.h"
+
+namespace steadylight {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Scene load_scene(const RenderSettings& settings) {
+    Scene scene(load_scene_desc(settings.scene_file));
+    const SceneDesc& desc = scene.desc();
+    scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
+    return scene;
+}
+
+FrameRange frames_to_render(const RenderSettings& settings, const Scene& scene) {
+    const FrameRange range = settings.frames.value_or(FrameRange{0, scene.frame_count() - 1});
+    if (range.last >= scene.frame_count())
+        throw InputError("--frames", fmt::format("frame {} is past the scene's last frame {}", range.last,
+                                                 scene.frame_count() - 1));
+    return range;
+}
+
+void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const Image& image) {
+    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"), image);
+    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), image);
+}
+
+}  // namespace
+
+FrameRange parse_frame_range(const std::string& text) {
+    static const std::regex pattern(R"(\s*(\d+)\s*(?:-\s*(\d+)\s*)?)");
+    std::smatch match;
+    if (!std::regex_match(text, match, pattern) || match[1].length() > 9 || match[2].length() > 9)
+        throw InputError("--frames", "expected a frame number N or a range A-B, got \"" + text + "\"");
+    FrameRange range;
+    range.first = std::stoi(match[1]);
+    range.last = match[2].matched ? std::stoi(match[2]) : range.first;
+    if (range.last < range.first)
+        throw InputError("--frames", "range \"" + text + "\" ends before it starts");
+    return range;
+}
+
+RenderSummary render_animation(const RenderSettings& settings) {
+    const Clock::time_point start = Clock::now();
+    if (settings.integrator != "path")
+        throw InputError("--integrator", "unknown integrator \"" + settings.integrator + "\" (path)");
+    const Scene scene = load_scene(settings);
+    const FrameRange range = frames_to_render(settings, scene);
+    std::filesystem::create_directories(settings.out_dir);
+
+    // Build the acceleration structures once; each frame only moves the dynamic objects.
+    RayTracer tracer(scene, scene.evaluate(range.first));
+    const auto bsdfs = make_bsdfs(scene);
+    Progress progress(range.last - range.first + 1, settings.show_progress);
+    RenderSummary summary;
+    for (int frame = range.first; frame <= range.last; ++frame) {
+        const Clock::time_point frame_start = Clock::now();
+        const FrameState state = scene.evaluate(frame);
+        tracer.set_frame(state);
+        const LightSet lights(scene, state);
+        const FrameContext context{scene, state, tracer, lights, bsdfs};
+        const Image image = render_path_traced(context, settings.path,
+                                               [&](int done, int total) { progress.update_frame(done, total); });
+        write_frame(settings, scene, frame, image);
+        ++summary.frames_written;
+        progress.finish_frame(fmt::format("frame {:4d}  {:7.2f} s  {}", frame, seconds_since(frame_start),
+                                          frame_file_name(settings.out_dir, scene.name(), frame, "exr")));
+    }
+    summary.seconds = seconds_since(start);
+    return summary;
+}
+
+std::string describe_scene(const std::string& scene_file) {
+    const Scene scene(load_scene_desc(scene_file));
+    const SceneDesc& desc = scene.desc();
+    std::string text = fmt::format("scene {} ({})\n", desc.name, scene_file);
+    text += fmt::format("frames: {} at {} fps ({:.2f} s)\n", desc.frame_count, desc.fps, desc.frame_count / desc.fps);
+    text += fmt::format("camera: {}x{}, vertical fov {} deg{}\n", desc.camera.width, desc.camera.height,
+                        desc.camera.fov_y_deg, is_chain_animated(desc.camera.placement) ? ", animated" : "");
+    long triangles = 0;
+    int area_lights = 0;
+    std::string objects;
+    for (size_t i = 0; i < desc.objects.size(); ++i) {
+        const ObjectDesc& object = desc.objects[i];
+        const auto* mesh = std::get_if<TriangleMesh>(&object.geometry);
+        const long count = mesh ? long(mesh->indices.size() / 3) : 0;
+        triangles += count;
+        area_lights += object.is_emitter();
+        objects += fmt::format("  {:<20} {:<8} {:>8} {:<10} {}{}\n", object.name, object.is_dynamic() ? "dynamic" : "static",
+                               mesh ? fmt::format("{} tris", count) : "sphere", desc.materials[size_t(object.material)].name,
+                               object.is_emitter() ? "emitter" : "", object.marked_dynamic && !is_chain_animated(object.placement) ? " (marked)" : "");
+    }
+    text += fmt::format("objects: {} ({} static, {} dynamic), {} triangles\n", desc.objects.size(),
+                        scene.static_objects().size(), scene.dynamic_objects().size(), triangles);
+    text += objects;
+    text += fmt::format("lights: {} area, {} point/spot\n", area_lights, desc.point_lights.size());
+    for (const PointLightDesc& light : desc.point_lights)
+        text += fmt::format("  {:<20} {}\n", light.name, light.type == PointLightType::point ? "point" : "spot");
+    text += fmt::format("materials: {}\n", desc.materials.size());
+    return text;
+}
+
+}  // namespace steadylight

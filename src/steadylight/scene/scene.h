@@ -1,0 +1,55 @@
+// Scene: the prepared, immutable scene. It owns the SceneDesc, splits objects into static and
+// dynamic (DESIGN.md §2), and answers `evaluate(frame)`: where the camera and every object are at
+// that frame. It knows nothing of Embree; trace/ builds acceleration structures from it.
+#pragma once
+
+#include <vector>
+
+#include "steadylight/base/ray.h"
+#include "steadylight/scene/scene_desc.h"
+
+namespace steadylight {
+
+/// A pinhole camera at one frame. Pixel (0,0) is the top-left; image right is camera +x.
+struct Camera {
+    Transform world_from_camera;
+    float tan_half_fov_y = 0;
+    int width = 0;
+    int height = 0;
+
+    /// The primary ray through film position (x, y) in pixels, e.g. (10.5, 3.5) is a centre.
+    Ray generate_ray(float x, float y) const;
+};
+
+/// Where everything is at one frame.
+struct FrameState {
+    int frame = 0;
+    float time_s = 0;
+    Camera camera;
+    std::vector<Transform> world_from_object;  // one per object
+};
+
+class Scene {
+public:
+    explicit Scene(SceneDesc desc);
+
+    const SceneDesc& desc() const { return m_desc; }
+    const std::string& name() const { return m_desc.name; }
+    const std::vector<ObjectDesc>& objects() const { return m_desc.objects; }
+    const ObjectDesc& object(int index) const { return m_desc.objects[size_t(index)]; }
+    const std::vector<int>& static_objects() const { return m_static; }
+    const std::vector<int>& dynamic_objects() const { return m_dynamic; }
+    int frame_count() const { return m_desc.frame_count; }
+
+    /// The camera and object placements at `frame` (any integer; time is frame / fps).
+    FrameState evaluate(int frame) const;
+    /// Overrides the output resolution (from --size), keeping everything else.
+    void set_resolution(int width, int height);
+
+private:
+    SceneDesc m_desc;
+    std::vector<int> m_static;
+    std::vector<int> m_dynamic;
+};
+
+}  // namespace steadylight

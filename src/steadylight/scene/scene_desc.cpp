@@ -1,0 +1,338 @@
+#include "steadylight/scene/scene_desc.h"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "steadylight/base/error.h"
+#include "steadylight/scene/gltf_loader.h"
+#include "steadylight/scene/json_reader.h"
+#include "steadylight/scene/shapes.h"
+
+namespace steadylight {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string resolve_path(const JsonObject& json, const std::string& key) {
+    const fs::path file = json.string(key);
+    const fs::path base = fs::path(json.file()).parent_path();
+    return file.is_absolute() ? file.string() : (base / file).lexically_normal().string();
+}
+
+Quat quat_from_numbers(const std::vector<float>& v, const JsonObject& json, const std::string& key) {
+    if (v.size() != 4) json.fail(key, "a quaternion needs 4 numbers [x, y, z, w]");
+    const Quat q{v[0], v[1], v[2], v[3]};
+    if (dot(q, q) < 1e-12f) json.fail(key, "quaternion must not be zero");
+    return normalize(q);
+}
+
+/// A rotation is a quaternion [x, y, z, w] or {"axis": [x, y, z], "degrees": a}.
+Quat parse_rotation(const JsonObject& json, const std::string& key) {
+    if (!json.has(key)) return {};
+    if (json.is_array(key)) return quat_from_numbers(json.numbers(key), json, key);
+    const JsonObject rotation = json.object(key);
+    const Vec3 axis = rotation.vec3("axis");
+    if (length(axis) == 0) rotation.fail("axis", "rotation axis must not be zero");
+    const Quat q = Quat::from_axis_angle(axis, rotation.number("degrees") * pi / 180);
+    rotation.warn_unread();
+    return q;
+}
+
+Interpolation parse_interpolation(const JsonObject& json) {
+    const std::string name = json.string("interpolation", "linear");
+    if (name == "linear") return Interpolation::linear;
+    if (name == "step") return Interpolation::step;
+    json.fail("interpolation", "unknown interpolation \"" + name + "\" (linear or step)");
+}
+
+template <class T>
+Track<T> parse_track(const JsonObject& json, size_t size, T (*convert)(const std::vector<float>&)) {
+    Track<T> track;
+    track.interpolation = parse_interpolation(json);
+    track.times = json.numbers("times");
+    for (const std::vector<float>& v : json.tuples("values", size)) track.values.push_back(convert(v));
+    if (track.times.empty()) json.fail("times", "a track needs at least one key");
+    if (track.times.size() != track.values.size())
+        json.fail("values", "has " + std::to_string(track.values.size()) + " entries for " +
+                                std::to_string(track.times.size()) + " times");
+    for (size_t i = 1; i < track.times.size(); ++i)
+        if (!(track.times[i] > track.times[i - 1]))
+            json.fail("times", "times must be strictly increasing");
+    json.warn_unread();
+    return track;
+}
+
+Vec3 vec3_from(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
+Quat quat_from(const std::vector<float>& v) {
+    const Quat q{v[0], v[1], v[2], v[3]};
+    return dot(q, q) > 0 ? normalize(q) : Quat{};
+}
+
+/// "transform": {translation, rotation, scale} and "animation": {translation, rotation, scale
+/// tracks}; a track replaces the fixed value of its component.
+AnimatedTrs parse_placement(const JsonObject& json) {
+    AnimatedTrs trs;
+    if (json.has("transform")) {
+        const JsonObject transform = json.object("transform");
+        trs.translation = transform.vec3("translation", {});
+        trs.rotation = parse_rotation(transform, "rotation");
+        trs.scale = transform.vec3("scale", {1, 1, 1});
+        transform.warn_unread();
+    }
+    if (json.has("animation")) {
+        const JsonObject animation = json.object("animation");
+        if (animation.has("translation"))
+            trs.translation_track = parse_track<Vec3>(animation.object("translation"), 3, vec3_from);
+        if (animation.has("rotation"))
+            trs.rotation_track = parse_track<Quat>(animation.object("rotation"), 4, quat_from);
+        if (animation.has("scale"))
+            trs.scale_track = parse_track<Vec3>(animation.object("scale"), 3, vec3_from);
+        animation.warn_unread();
+    }
+    return trs;
+}
+
+MaterialDesc parse_material(const std::string& name, const JsonObject& json) {
+    MaterialDesc m;
+    m.name = name;
+    const std::string type = json.string("type");
+    if (type == "lambert") {
+        m.type = MaterialType::lambert;
+    } else if (type == "mirror") {
+        m.type = MaterialType::mirror;
+        m.reflectance = {1, 1, 1};
+    } else if (type == "dielectric") {
+        m.type = MaterialType::dielectric;
+    } else if (type == "glossy") {
+        m.type = MaterialType::glossy;
+        m.reflectance = {0.9f, 0.9f, 0.9f};
+    } else {
+        json.fail("type", "unknown material type \"" + type + "\" (lambert, mirror, dielectric, glossy)");
+    }
+    m.reflectance = json.rgb("reflectance", m.reflectance);
+    m.transmittance = json.rgb("transmittance", m.transmittance);
+    m.ior = json.number("ior", m.ior);
+    m.roughness = json.number("roughness", m.roughness);
+    for (int c = 0; c < 3; ++c) {
+        if (m.reflectance[c] < 0 || m.reflectance[c] > 1) json.fail("reflectance", "must lie in [0, 1]");
+        if (m.transmittance[c] < 0 || m.transmittance[c] > 1) json.fail("transmittance", "must lie in [0, 1]");
+    }
+    if (!(m.ior > 0)) json.fail("ior", "must be positive");
+    if (!(m.roughness > 0 && m.roughness <= 1)) json.fail("roughness", "must lie in (0, 1]");
+    json.warn_unread();
+    return m;
+}
+
+Geometry parse_shape(const JsonObject& json) {
+    const std::string type = json.string("type");
+    Geometry geometry;
+    if (type == "quad") {
+        geometry = make_quad(json.vec3("corner"), json.vec3("edge_u"), json.vec3("edge_v"));
+    } else if (type == "box") {
+        const Vec3 size = json.vec3("size");
+        if (!(size.x > 0 && size.y > 0 && size.z > 0)) json.fail("size", "box sizes must be positive");
+        geometry = make_box(json.vec3("center", {}), size);
+    } else if (type == "sphere") {
+        const float radius = json.number("radius");
+        if (!(radius > 0)) json.fail("radius", "must be positive");
+        geometry = Sphere{json.vec3("center", {}), radius};
+    } else if (type == "mesh") {
+        const std::string file = resolve_path(json, "file");
+        if (!fs::exists(file)) json.fail("file", "mesh file \"" + file + "\" not found");
+        geometry = load_obj_mesh(file);
+    } else {
+        json.fail("type", "unknown shape type \"" + type + "\" (quad, box, sphere, mesh)");
+    }
+    json.warn_unread();
+    return geometry;
+}
+
+ObjectDesc parse_object(const JsonObject& json, const std::map<std::string, int>& materials,
+                        int black_material, int index) {
+    ObjectDesc object;
+    object.name = json.string("name", "object" + std::to_string(index));
+    object.geometry = parse_shape(json.object("shape"));
+    object.emission = json.rgb("emission", {});
+    for (int c = 0; c < 3; ++c)
+        if (object.emission[c] < 0) json.fail("emission", "radiance must not be negative");
+    object.two_sided_emission = json.boolean("two_sided", false);
+    if (json.has("material")) {
+        const std::string material = json.string("material");
+        const auto it = materials.find(material);
+        if (it == materials.end()) json.fail("material", "unknown material \"" + material + "\"");
+        object.material = it->second;
+    } else if (object.is_emitter()) {
+        object.material = black_material;  // an emitter without a material reflects nothing
+    } else {
+        json.fail("material", "missing required field");
+    }
+    object.placement = {parse_placement(json)};
+    object.marked_dynamic = json.boolean("dynamic", false);
+    json.warn_unread();
+    return object;
+}
+
+PointLightDesc parse_point_light(const JsonObject& json) {
+    PointLightDesc light;
+    const std::string type = json.string("type");
+    if (type == "point") {
+        light.type = PointLightType::point;
+    } else if (type == "spot") {
+        light.type = PointLightType::spot;
+        light.direction = json.vec3("direction");
+        if (length(light.direction) == 0) json.fail("direction", "must not be zero");
+        light.direction = normalize(light.direction);
+        light.cone_angle_deg = json.number("cone_degrees", light.cone_angle_deg);
+        light.falloff_start_deg = json.number("falloff_start_degrees", light.cone_angle_deg * 0.8f);
+        if (!(light.cone_angle_deg > 0 && light.cone_angle_deg <= 90))
+            json.fail("cone_degrees", "must lie in (0, 90]");
+        if (!(light.falloff_start_deg >= 0 && light.falloff_start_deg <= light.cone_angle_deg))
+            json.fail("falloff_start_degrees", "must lie in [0, cone_degrees]");
+    } else {
+        json.fail("type", "unknown light type \"" + type + "\" (point or spot)");
+    }
+    light.name = json.string("name", type);
+    light.position = json.vec3("position");
+    light.intensity = json.rgb("intensity", {});
+    for (int c = 0; c < 3; ++c)
+        if (light.intensity[c] < 0) json.fail("intensity", "must not be negative");
+    json.warn_unread();
+    return light;
+}
+
+CameraDesc parse_camera(const JsonObject& json, const CameraDesc& fallback) {
+    CameraDesc camera = fallback;
+    camera.fov_y_deg = json.number("fov_y", camera.fov_y_deg);
+    if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) json.fail("fov_y", "must lie in (0, 180) degrees");
+    if (json.has("resolution")) {
+        const std::vector<float> r = json.numbers("resolution");
+        if (r.size() != 2 || r[0] < 1 || r[1] < 1 || r[0] > 65536 || r[1] > 65536 ||
+            r[0] != std::floor(r[0]) || r[1] != std::floor(r[1]))
+            json.fail("resolution", "expected [width, height] in whole pixels");
+        camera.width = int(r[0]);
+        camera.height = int(r[1]);
+    }
+    AnimatedTrs placement = parse_placement(json);
+    if (json.has("position")) {
+        // A look-at camera: the fixed placement comes from position, look_at and up.
+        const Vec3 position = json.vec3("position");
+        const Vec3 back = position - json.vec3("look_at");
+        const Vec3 up = json.vec3("up", {0, 1, 0});
+        if (length(back) == 0) json.fail("look_at", "must differ from position");
+        const Vec3 right = cross(up, back);
+        if (length(right) < 1e-6f * length(back) * length(up)) json.fail("up", "must not be parallel to the view direction");
+        placement.translation = position;
+        placement.rotation = Quat::from_basis(normalize(right), normalize(cross(back, right)), normalize(back));
+    }
+    if (json.has("position") || json.has("transform") || json.has("animation") || camera.placement.empty())
+        camera.placement = {placement};
+    json.warn_unread();
+    return camera;
+}
+
+void validate_mesh(const TriangleMesh& mesh, const std::string& where) {
+    if (mesh.indices.size() % 3 != 0) throw InputError(where, "triangle indices are not a multiple of 3");
+    for (const int i : mesh.indices)
+        if (i < 0 || size_t(i) >= mesh.positions.size()) throw InputError(where, "triangle index out of range");
+    for (const Vec3& p : mesh.positions)
+        if (!is_finite(p)) throw InputError(where, "vertex position is not finite");
+    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+        throw InputError(where, "normal count differs from vertex count");
+    for (const Vec3& n : mesh.normals)
+        if (!is_finite(n)) throw InputError(where, "vertex normal is not finite");
+}
+
+void validate_placement(const std::vector<AnimatedTrs>& chain, const SceneDesc& desc,
+                        const std::string& where) {
+    for (int frame = 0; frame < desc.frame_count; ++frame) {
+        const Transform t = evaluate_chain(chain, desc.frame_time_s(frame));
+        if (!t.is_finite()) throw InputError(where, "transform is not finite at frame " + std::to_string(frame));
+        if (std::abs(t.determinant()) < 1e-12f)
+            throw InputError(where, "transform is singular (zero scale) at frame " + std::to_string(frame));
+    }
+}
+
+}  // namespace
+
+void validate(const SceneDesc& desc) {
+    const std::string& file = desc.source_file;
+    if (desc.frame_count < 1) throw InputError(file, "the scene has no frames");
+    if (desc.camera.placement.empty()) throw InputError(file, "the scene has no camera");
+    validate_placement(desc.camera.placement, desc, file + ": camera");
+    for (const ObjectDesc& object : desc.objects) {
+        const std::string where = file + ": object \"" + object.name + "\"";
+        if (object.material < 0 || size_t(object.material) >= desc.materials.size())
+            throw InputError(where, "material index out of range");
+        if (!is_finite(object.emission)) throw InputError(where, "emission is not finite");
+        validate_placement(object.placement, desc, where);
+        float area = 0;
+        if (const auto* mesh = std::get_if<TriangleMesh>(&object.geometry)) {
+            validate_mesh(*mesh, where);
+            area = mesh_area(*mesh);
+        } else {
+            const Sphere& sphere = std::get<Sphere>(object.geometry);
+            if (!is_finite(sphere.center) || !(sphere.radius > 0 && std::isfinite(sphere.radius)))
+                throw InputError(where, "sphere needs a finite centre and a positive radius");
+            area = 4 * pi * sphere.radius * sphere.radius;
+        }
+        if (object.is_emitter() && !(area > 0)) throw InputError(where, "emitter has zero area");
+    }
+    for (const PointLightDesc& light : desc.point_lights)
+        if (!is_finite(light.position) || !is_finite(light.intensity))
+            throw InputError(file + ": light \"" + light.name + "\"", "position or intensity is not finite");
+}
+
+SceneDesc load_scene_desc(const std::string& path) {
+    const nlohmann::json root_json = parse_json_file(path);
+    const JsonObject root(root_json, path, "");
+    SceneDesc desc;
+    desc.source_file = path;
+    desc.name = root.string("name", fs::path(path).stem().string());
+
+    // A glTF file brings objects, materials, a camera and animations; the JSON adds to them.
+    float gltf_duration_s = 0;
+    bool has_camera = false;
+    if (root.has("gltf")) gltf_duration_s = append_gltf(resolve_path(root, "gltf"), desc, has_camera);
+
+    if (root.has("frames")) {
+        const JsonObject frames = root.object("frames");
+        desc.fps = frames.number("fps", desc.fps);
+        if (!(desc.fps > 0)) frames.fail("fps", "must be positive");
+        desc.frame_count = frames.integer("count", 1 + int(std::floor(gltf_duration_s * desc.fps + 1e-3f)));
+        if (desc.frame_count < 1) frames.fail("count", "must be at least 1");
+        frames.warn_unread();
+    } else if (gltf_duration_s > 0) {
+        desc.frame_count = 1 + int(std::floor(gltf_duration_s * desc.fps + 1e-3f));
+    }
+
+    if (root.has("camera")) {
+        desc.camera = parse_camera(root.object("camera"), desc.camera);
+    } else if (!has_camera) {
+        root.fail("camera", "missing required field (and no camera in the glTF file)");
+    }
+
+    std::map<std::string, int> material_index;
+    for (size_t i = 0; i < desc.materials.size(); ++i) material_index[desc.materials[i].name] = int(i);
+    if (root.has("materials")) {
+        for (const auto& [name, json] : root.members("materials")) {
+            material_index[name] = int(desc.materials.size());
+            desc.materials.push_back(parse_material(name, json));
+        }
+    }
+    if (root.has("objects")) {
+        const std::vector<JsonObject> objects = root.objects("objects");
+        const int black_material = int(desc.materials.size());
+        desc.materials.push_back({.name = "(emitter)", .reflectance = {0, 0, 0}});
+        for (size_t i = 0; i < objects.size(); ++i)
+            desc.objects.push_back(parse_object(objects[i], material_index, black_material, int(i)));
+    }
+    if (root.has("lights"))
+        for (const JsonObject& light : root.objects("lights")) desc.point_lights.push_back(parse_point_light(light));
+    root.warn_unread();
+
+    validate(desc);
+    return desc;
+}
+
+}  // namespace steadylight

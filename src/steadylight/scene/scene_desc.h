@@ -1,0 +1,96 @@
+// SceneDesc: the scene as the user described it, loaded from JSON (docs/scene-format.md), from
+// glTF 2.0 or from both. It is plain data with every mesh already read into memory; Scene
+// (scene.h) prepares it for rendering. This is the first stage of the pipeline (DESIGN.md §3).
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "steadylight/base/color.h"
+#include "steadylight/scene/animation.h"
+
+namespace steadylight {
+
+enum class MaterialType { lambert, mirror, dielectric, glossy };
+
+struct MaterialDesc {
+    std::string name;
+    MaterialType type = MaterialType::lambert;
+    Rgb reflectance{0.8f, 0.8f, 0.8f};  // lambert albedo; mirror and glossy: normal-incidence colour
+    Rgb transmittance{1, 1, 1};         // dielectric: colour filter on refraction
+    float ior = 1.5f;                   // dielectric: index of refraction inside / outside
+    float roughness = 0.3f;             // glossy: GGX alpha = roughness^2
+};
+
+/// Triangles in object space. `normals` is empty (flat shading) or one per position.
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+    std::vector<int> indices;  // three per triangle, counter-clockwise around the front normal
+};
+
+/// An analytic sphere in object space; the front side is the outside.
+struct Sphere {
+    Vec3 center;
+    float radius = 1;
+};
+
+using Geometry = std::variant<TriangleMesh, Sphere>;
+
+struct ObjectDesc {
+    std::string name;
+    Geometry geometry;
+    int material = 0;               // index into SceneDesc::materials
+    Rgb emission;                   // radiance leaving the front side; black when not a light
+    bool two_sided_emission = false;
+    std::vector<AnimatedTrs> placement;  // world_from_object = product, parent first
+    bool marked_dynamic = false;    // "dynamic": true in the file, even when not animated
+
+    bool is_emitter() const { return !is_black(emission); }
+    bool is_dynamic() const { return marked_dynamic || is_chain_animated(placement); }
+};
+
+enum class PointLightType { point, spot };
+
+/// A light with no area: radiant intensity (W/sr per channel) from one point; a spot light
+/// restricts it to a cone, fading out between `falloff_start_deg` and `cone_angle_deg`.
+struct PointLightDesc {
+    std::string name;
+    PointLightType type = PointLightType::point;
+    Vec3 position;
+    Vec3 direction{0, -1, 0};
+    Rgb intensity;
+    float cone_angle_deg = 30;
+    float falloff_start_deg = 25;
+};
+
+/// A pinhole camera looking down its local -z with +y up (the glTF convention).
+struct CameraDesc {
+    std::vector<AnimatedTrs> placement;  // world_from_camera
+    float fov_y_deg = 40;
+    int width = 320;
+    int height = 240;
+};
+
+struct SceneDesc {
+    std::string name;         // used in output file names
+    std::string source_file;  // where it was loaded from, for messages
+    CameraDesc camera;
+    std::vector<MaterialDesc> materials;
+    std::vector<ObjectDesc> objects;
+    std::vector<PointLightDesc> point_lights;
+    int frame_count = 1;
+    float fps = 24;
+
+    float frame_time_s(int frame) const { return float(frame) / fps; }
+};
+
+/// Loads a JSON scene (docs/scene-format.md); relative paths are relative to the file.
+/// Throws InputError naming the file and the JSON pointer of anything wrong.
+SceneDesc load_scene_desc(const std::string& path);
+
+/// Checks what no single loader can: indices in range, finite numbers, emitters with area.
+void validate(const SceneDesc& desc);
+
+}  // namespace steadylight

@@ -1,0 +1,176 @@
+#include "steadylight/scene/scene_desc.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "steadylight/base/error.h"
+#include "steadylight/scene/scene.h"
+#include "steadylight/scene/shapes.h"
+
+namespace steadylight {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string scenes_dir = std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/";
+
+/// A scratch folder per test, removed afterwards.
+class SceneFiles : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = fs::temp_directory_path() /
+                ("steadylight_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+
+    std::string write(const std::string& name, const std::string& text) const {
+        const std::string path = (m_dir / name).string();
+        std::ofstream(path) << text;
+        return path;
+    }
+
+    /// Writes a scene whose objects are `objects` (a JSON array body) and returns its path.
+    std::string write_scene(const std::string& objects, const std::string& extra = "") const {
+        return write("scene.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+            "materials": {"white": {"type": "lambert", "reflectance": 0.5}},
+            "objects": [)" + objects + "]" + extra + "}");
+    }
+
+    /// Expects loading `path` to fail with a message containing every one of `parts`.
+    static void expect_error(const std::string& path, const std::vector<std::string>& parts) {
+        try {
+            load_scene_desc(path);
+            ADD_FAILURE() << "no error for " << path;
+        } catch (const InputError& e) {
+            for (const std::string& part : parts) EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+        }
+    }
+
+    fs::path m_dir;
+};
+
+const std::string floor_quad =
+    R"({"name": "floor", "shape": {"type": "quad", "corner": [0,0,0], "edge_u": [0,0,1], "edge_v": [1,0,0]}, "material": "white"})";
+
+TEST(SceneDesc, BallMatchesItsSpec) {
+    const Scene scene(load_scene_desc(scenes_dir + "ball.json"));
+    EXPECT_EQ(scene.frame_count(), 60);
+    EXPECT_EQ(scene.desc().camera.width, 320);
+    ASSERT_EQ(scene.dynamic_objects().size(), 1u);
+    const int ball = scene.dynamic_objects()[0];
+    EXPECT_EQ(scene.object(ball).name, "ball");
+    // centre(t) = (4.5 - 3.5 t, 0.5 + 1.5 |sin(2 pi t)|, 1.2), t = f / 59.
+    for (const int f : {0, 15, 44, 59}) {
+        const float t = float(f) / 59;
+        const Vec3 c = scene.evaluate(f).world_from_object[size_t(ball)].point({});
+        EXPECT_NEAR(c.x, 4.5f - 3.5f * t, 1e-5f);
+        EXPECT_NEAR(c.y, 0.5f + 1.5f * std::abs(std::sin(2 * pi * t)), 1e-5f);
+        EXPECT_NEAR(c.z, 1.2f, 1e-6f);
+    }
+}
+
+TEST(SceneDesc, CameraRightIsWorldMinusXInBall) {
+    const Scene scene(load_scene_desc(scenes_dir + "ball.json"));
+    const Camera camera = scene.evaluate(0).camera;
+    const Ray left = camera.generate_ray(0, 120), right = camera.generate_ray(320, 120);
+    EXPECT_GT(left.d.x, 0);   // the green wall (x = 5.5) is on the left
+    EXPECT_LT(right.d.x, 0);  // the red wall (x = 0) on the right
+}
+
+TEST(SceneDesc, TableHasTwoDynamicObjectsAndTwoLights) {
+    const Scene scene(load_scene_desc(scenes_dir + "table.json"));
+    EXPECT_EQ(scene.dynamic_objects().size(), 2u);
+    int lights = 0;
+    for (const ObjectDesc& object : scene.objects()) lights += object.is_emitter();
+    EXPECT_EQ(lights, 2);
+}
+
+TEST(SceneDesc, CornellIsStatic) {
+    const Scene scene(load_scene_desc(scenes_dir + "cornell.json"));
+    EXPECT_TRUE(scene.dynamic_objects().empty());
+    EXPECT_EQ(scene.frame_count(), 1);
+}
+
+TEST(SceneDesc, BoxNormalsPointOutward) {
+    const TriangleMesh box = make_box({0, 0, 0}, {1, 2, 3});
+    for (size_t i = 0; i < box.indices.size(); i += 3) {
+        const Vec3 a = box.positions[size_t(box.indices[i])], b = box.positions[size_t(box.indices[i + 1])],
+                   c = box.positions[size_t(box.indices[i + 2])];
+        EXPECT_GT(dot(cross(b - a, c - a), (a + b + c) / 3), 0);
+    }
+}
+
+TEST_F(SceneFiles, MarkedObjectIsDynamicWithoutAnimation) {
+    const std::string marked = floor_quad.substr(0, floor_quad.size() - 1) + R"(, "dynamic": true})";
+    const SceneDesc desc = load_scene_desc(write_scene(marked));
+    EXPECT_TRUE(desc.objects[0].is_dynamic());
+}
+
+TEST_F(SceneFiles, LoadsObjMeshRelativeToTheScene) {
+    write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const SceneDesc desc = load_scene_desc(write_scene(R"({"shape": {"type": "mesh", "file": "tri.obj"}, "material": "white"})"));
+    EXPECT_EQ(std::get<TriangleMesh>(desc.objects[0].geometry).indices.size(), 3u);
+}
+
+TEST_F(SceneFiles, MissingFileIsAnError) { expect_error((m_dir / "nope.json").string(), {"nope.json", "cannot open"}); }
+
+TEST_F(SceneFiles, SyntaxErrorNamesTheFile) { expect_error(write("bad.json", "{\"camera\": "), {"bad.json", "invalid JSON"}); }
+
+TEST_F(SceneFiles, NanIsAnError) {
+    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": NaN}, "material": "white"})"), {"scene.json", "invalid JSON"});
+}
+
+TEST_F(SceneFiles, InfiniteNumberIsAnError) {
+    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": 1e999}, "material": "white"})"),
+                 {"scene.json", "overflow"});
+}
+
+TEST_F(SceneFiles, MissingFieldNamesItsPointer) {
+    expect_error(write_scene(R"({"shape": {"type": "sphere"}, "material": "white"})"),
+                 {"scene.json:/objects/0/shape/radius", "missing required field"});
+}
+
+TEST_F(SceneFiles, WrongTypeNamesItsPointer) {
+    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": "big"}, "material": "white"})"),
+                 {"/objects/0/shape/radius", "expected a number"});
+}
+
+TEST_F(SceneFiles, MissingMeshFileIsAnError) {
+    expect_error(write_scene(R"({"shape": {"type": "mesh", "file": "gone.obj"}, "material": "white"})"),
+                 {"/objects/0/shape/file", "gone.obj", "not found"});
+}
+
+TEST_F(SceneFiles, BrokenObjIsAnError) {
+    write("broken.obj", "this is not an OBJ file\n");
+    expect_error(write_scene(R"({"shape": {"type": "mesh", "file": "broken.obj"}, "material": "white"})"), {"broken.obj"});
+}
+
+TEST_F(SceneFiles, ZeroAreaLightIsAnError) {
+    expect_error(write_scene(R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [2,0,0]}, "emission": 5})"),
+                 {"lamp", "zero area"});
+}
+
+TEST_F(SceneFiles, UnknownMaterialIsAnError) {
+    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": 1}, "material": "glas"})"), {"unknown material \"glas\""});
+}
+
+TEST_F(SceneFiles, NonIncreasingKeyTimesAreAnError) {
+    const std::string animated = floor_quad.substr(0, floor_quad.size() - 1) +
+        R"(, "animation": {"translation": {"times": [0, 0], "values": [[0,0,0],[1,0,0]]}}})";
+    expect_error(write_scene(animated), {"/objects/0/animation/translation/times", "increasing"});
+}
+
+TEST_F(SceneFiles, ZeroScaleIsAnError) {
+    const std::string flat = floor_quad.substr(0, floor_quad.size() - 1) + R"(, "transform": {"scale": [0, 1, 1]}})";
+    expect_error(write_scene(flat), {"floor", "singular"});
+}
+
+TEST_F(SceneFiles, MissingCameraIsAnError) {
+    expect_error(write("nocam.json", R"({"objects": []})"), {"nocam.json:/camera", "missing"});
+}
+
+}  // namespace
+}  // namespace steadylight

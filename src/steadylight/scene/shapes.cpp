@@ -1,0 +1,80 @@
+#include "steadylight/scene/shapes.h"
+
+#include <tiny_obj_loader.h>
+
+#include "steadylight/base/error.h"
+
+namespace steadylight {
+
+TriangleMesh make_quad(Vec3 corner, Vec3 edge_u, Vec3 edge_v) {
+    TriangleMesh mesh;
+    mesh.positions = {corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v};
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    return mesh;
+}
+
+TriangleMesh make_box(Vec3 center, Vec3 size) {
+    TriangleMesh mesh;
+    const Vec3 h = size * 0.5f;
+    // Each face: a corner and two edges; cross(second, first) points outward.
+    const Vec3 faces[6][3] = {
+        {{-h.x, -h.y, -h.z}, {0, 0, size.z}, {size.x, 0, 0}},  // bottom, -y
+        {{-h.x, h.y, -h.z}, {size.x, 0, 0}, {0, 0, size.z}},   // top, +y
+        {{-h.x, -h.y, -h.z}, {0, size.y, 0}, {0, 0, size.z}},  // -x
+        {{h.x, -h.y, -h.z}, {0, 0, size.z}, {0, size.y, 0}},   // +x
+        {{-h.x, -h.y, -h.z}, {size.x, 0, 0}, {0, size.y, 0}},  // -z
+        {{-h.x, -h.y, h.z}, {0, size.y, 0}, {size.x, 0, 0}},   // +z
+    };
+    for (const auto& face : faces) {
+        const TriangleMesh quad = make_quad(center + face[0], face[2], face[1]);
+        const int base = int(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), quad.positions.begin(), quad.positions.end());
+        for (const int i : quad.indices) mesh.indices.push_back(base + i);
+    }
+    return mesh;
+}
+
+TriangleMesh load_obj_mesh(const std::string& path) {
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(path, config))
+        throw InputError(path, reader.Error().empty() ? "cannot read OBJ file" : reader.Error());
+
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    TriangleMesh mesh;
+    bool all_normals = true;
+    std::vector<Vec3> normals;
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        for (const tinyobj::index_t& index : shape.mesh.indices) {
+            const size_t v = size_t(index.vertex_index);
+            if (index.vertex_index < 0 || 3 * v + 2 >= attrib.vertices.size())
+                throw InputError(path, "face refers to a missing vertex");
+            mesh.indices.push_back(int(mesh.positions.size()));
+            mesh.positions.push_back({attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
+                                      attrib.vertices[3 * v + 2]});
+            const size_t n = size_t(index.normal_index);
+            if (index.normal_index < 0 || 3 * n + 2 >= attrib.normals.size()) {
+                all_normals = false;
+                continue;
+            }
+            normals.push_back({attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]});
+        }
+    }
+    if (mesh.indices.empty()) throw InputError(path, "OBJ file has no faces");
+    if (all_normals) mesh.normals = std::move(normals);
+    return mesh;
+}
+
+float mesh_area(const TriangleMesh& mesh) {
+    float area = 0;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const Vec3 a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                   c = mesh.positions[mesh.indices[i + 2]];
+        area += 0.5f * length(cross(b - a, c - a));
+    }
+    return area;
+}
+
+}  // namespace steadylight

@@ -1,0 +1,118 @@
+// Area lights: the surface of an emissive object, sampled uniformly by area (triangles chosen
+// in proportion to their area; spheres over their whole surface).
+#include <algorithm>
+#include <cmath>
+
+#include "steadylight/base/error.h"
+#include "steadylight/base/sampling.h"
+#include "steadylight/shading/light.h"
+#include "steadylight/shading/surface_point.h"
+
+namespace steadylight {
+namespace {
+
+struct Triangle {
+    Vec3 p0, p1, p2, n;
+};
+
+class AreaLight final : public Light {
+public:
+    AreaLight(const ObjectDesc& object, std::vector<Triangle> triangles, std::vector<float> cdf, float area)
+        : m_object(object), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area) {}
+
+    AreaLight(const ObjectDesc& object, Vec3 center, float radius)
+        : m_object(object), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius) {}
+
+    std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const override {
+        LightSample s;
+        sample_point(u, s.p, s.n);
+        const Vec3 d = s.p - ref;
+        s.distance = length(d);
+        if (!(s.distance > 0)) return std::nullopt;
+        s.wi = d / s.distance;
+        s.Li = emitted_radiance(m_object, s.n, -s.wi);
+        s.pdf = area_to_solid_angle(1 / m_area, ref, s.p, s.n);
+        if (is_black(s.Li) || !(s.pdf > 0)) return std::nullopt;
+        return s;
+    }
+
+    float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const override {
+        return area_to_solid_angle(1 / m_area, ref, p, n);
+    }
+
+    float power() const override {
+        return luminance(m_object.emission) * pi * m_area * (m_object.two_sided_emission ? 2.0f : 1.0f);
+    }
+
+private:
+    void sample_point(Vec2 u, Vec3& p, Vec3& n) const {
+        if (m_triangles.empty()) {
+            n = sample_uniform_sphere(u);
+            p = m_center + n * m_radius;
+            return;
+        }
+        // Choose a triangle with u.x, then reuse the remainder of u.x inside it.
+        const size_t i = std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u.x) - m_cdf.begin()),
+                                  m_triangles.size() - 1);
+        const float lo = i ? m_cdf[i - 1] : 0;
+        const float ux = std::clamp((u.x - lo) / std::max(m_cdf[i] - lo, 1e-20f), 0.0f, 0x1.fffffep-1f);
+        const Vec2 b = sample_uniform_triangle({ux, u.y});
+        const Triangle& t = m_triangles[i];
+        p = t.p0 * (1 - b.x - b.y) + t.p1 * b.x + t.p2 * b.y;
+        n = t.n;
+    }
+
+    const ObjectDesc& m_object;
+    std::vector<Triangle> m_triangles;
+    std::vector<float> m_cdf;
+    Vec3 m_center;
+    float m_radius = 0;
+    float m_area = 0;
+};
+
+std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, const TriangleMesh& mesh,
+                                       const Transform& world_from_object) {
+    std::vector<Triangle> triangles;
+    std::vector<float> cdf;
+    float area = 0;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        Triangle t{world_from_object.point(mesh.positions[size_t(mesh.indices[i])]),
+                   world_from_object.point(mesh.positions[size_t(mesh.indices[i + 1])]),
+                   world_from_object.point(mesh.positions[size_t(mesh.indices[i + 2])]), {}};
+        const Vec3 c = cross(t.p1 - t.p0, t.p2 - t.p0);
+        const float a = 0.5f * length(c);
+        if (!(a > 0)) continue;
+        t.n = c / (2 * a);
+        // Vertex normals decide the front side, as for ray hits (surface_point.cpp).
+        if (!mesh.normals.empty()) {
+            const Vec3 ns = world_from_object.normal(mesh.normals[size_t(mesh.indices[i])]);
+            if (dot(ns, t.n) < 0) t.n = -t.n;
+        }
+        area += a;
+        triangles.push_back(t);
+        cdf.push_back(area);
+    }
+    if (!(area > 0)) throw InputError(object.name, "emitter has zero area");
+    for (float& c : cdf) c /= area;
+    cdf.back() = 1;
+    return std::make_unique<AreaLight>(object, std::move(triangles), std::move(cdf), area);
+}
+
+}  // namespace
+
+std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& frame, int object) {
+    const ObjectDesc& desc = scene.object(object);
+    const Transform& world_from_object = frame.world_from_object[size_t(object)];
+    if (const auto* mesh = std::get_if<TriangleMesh>(&desc.geometry))
+        return make_mesh_light(desc, *mesh, world_from_object);
+    // A sphere light must stay a sphere: uneven scaling would need ellipsoid sampling.
+    const Sphere& sphere = std::get<Sphere>(desc.geometry);
+    const float sx = length(world_from_object.vector({1, 0, 0}));
+    const float sy = length(world_from_object.vector({0, 1, 0}));
+    const float sz = length(world_from_object.vector({0, 0, 1}));
+    if (std::abs(sx - sy) > 1e-4f * sx || std::abs(sx - sz) > 1e-4f * sx)
+        throw InputError(desc.name, "an emissive sphere must be scaled uniformly");
+    return std::make_unique<AreaLight>(desc, world_from_object.point(sphere.center), sphere.radius * sx);
+}
+
+}  // namespace steadylight

@@ -1,0 +1,32 @@
+#include "steadylight/shading/bsdf.h"
+
+#include <cmath>
+#include <utility>
+
+namespace steadylight {
+
+std::unique_ptr<Bsdf> make_bsdf(const MaterialDesc& material) {
+    switch (material.type) {
+        case MaterialType::lambert: return make_lambert(material.reflectance);
+        case MaterialType::mirror: return make_mirror(material.reflectance);
+        case MaterialType::dielectric: return make_dielectric(material.ior, material.transmittance);
+        case MaterialType::glossy: return make_glossy(material.reflectance, material.roughness);
+    }
+    return make_lambert(material.reflectance);
+}
+
+float fresnel_dielectric(float cos_i, float ior) {
+    float eta = ior;
+    if (cos_i < 0) {
+        eta = 1 / eta;
+        cos_i = -cos_i;
+    }
+    const float sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1) return 1;  // total internal reflection
+    const float cos_t = std::sqrt(1 - sin2_t);
+    const float r_parallel = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const float r_perpendicular = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return (r_parallel * r_parallel + r_perpendicular * r_perpendicular) / 2;
+}
+
+}  // namespace steadylight

@@ -1,0 +1,59 @@
+// Lights: emissive objects (area lights) and point and spot lights, and the LightSet that picks
+// one in proportion to its power for next-event estimation. Built per frame, since emissive
+// objects may move. Interface here, one file per kind of light.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "steadylight/scene/scene.h"
+
+namespace steadylight {
+
+/// A point on a light chosen for a shading point `ref`.
+struct LightSample {
+    Vec3 p;        // on the light
+    Vec3 n;        // the light's normal at p (zero for point lights)
+    Vec3 wi;       // unit direction from ref towards p
+    float distance = 0;
+    Rgb Li;        // radiance arriving at ref along -wi (for point lights: intensity / distance^2)
+    float pdf = 0; // solid angle at ref (point lights: 1), times the probability of the light
+    bool is_delta = false;
+};
+
+class Light {
+public:
+    virtual ~Light() = default;
+    /// Samples a point as seen from `ref`; pdf in solid angle, not counting light selection.
+    virtual std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const = 0;
+    /// The solid-angle pdf sample_li would give for reaching `p` (normal `n`) from `ref`.
+    virtual float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const = 0;
+    /// Total emitted power (luminance of W), used to choose lights.
+    virtual float power() const = 0;
+};
+
+/// Area light over the world-space surface of emissive object `object` at this frame.
+std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& frame, int object);
+std::unique_ptr<Light> make_point_light(const PointLightDesc& desc);
+
+class LightSet {
+public:
+    LightSet(const Scene& scene, const FrameState& frame);
+
+    bool empty() const { return m_lights.empty(); }
+    /// Picks a light with `u_select` and samples it; the pdf includes the choice.
+    std::optional<LightSample> sample(Vec3 ref, float u_select, Vec2 u) const;
+    /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
+    float pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const;
+
+private:
+    std::vector<std::unique_ptr<Light>> m_lights;
+    std::vector<float> m_cdf;                // over m_lights, by power
+    std::vector<int> m_light_of_object;      // object -> index in m_lights, or -1
+};
+
+/// Converts an area-measure pdf at `p` (normal `n`) into solid angle as seen from `ref`.
+float area_to_solid_angle(float pdf_area, Vec3 ref, Vec3 p, Vec3 n);
+
+}  // namespace steadylight

@@ -1,0 +1,272 @@
+#include "steadylight/shading/light.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <utility>
+
+#include "steadylight/base/rng.h"
+#include "steadylight/base/sampling.h"
+#include "steadylight/scene/shapes.h"
+
+namespace steadylight {
+namespace {
+
+constexpr Vec3 origin{0, 0, 0};
+
+SceneDesc empty_scene() {
+    SceneDesc desc;
+    desc.materials.push_back(MaterialDesc{});
+    desc.camera.placement = {AnimatedTrs{}};
+    return desc;
+}
+
+ObjectDesc object(Geometry geometry, Rgb emission, bool two_sided = false) {
+    ObjectDesc o;
+    o.name = "light";
+    o.geometry = std::move(geometry);
+    o.emission = emission;
+    o.two_sided_emission = two_sided;
+    o.placement = {AnimatedTrs{}};
+    o.material = 0;
+    return o;
+}
+
+/// A size x size square at height z centred above (x, y), its front facing down (-z).
+ObjectDesc ceiling_light(float size, float z, Rgb emission, float x = 0, float y = 0, bool two_sided = false) {
+    const Vec3 corner{x - size / 2, y - size / 2, z};
+    return object(make_quad(corner, {0, size, 0}, {size, 0, 0}), emission, two_sided);
+}
+
+/// A scene built from `desc` and its lights at frame 0. Not copyable: the lights refer to the scene.
+struct Lit {
+    explicit Lit(SceneDesc desc) : scene(std::move(desc)), frame(scene.evaluate(0)), lights(scene, frame) {}
+    Lit(const Lit&) = delete;
+    Lit& operator=(const Lit&) = delete;
+
+    Scene scene;
+    FrameState frame;
+    LightSet lights;
+};
+
+SceneDesc scene_with(std::initializer_list<ObjectDesc> objects) {
+    SceneDesc desc = empty_scene();
+    desc.objects = objects;
+    return desc;
+}
+
+/// Where the ray from ref along dir first meets the light, and the light's normal there.
+using HitFn = std::function<std::optional<std::pair<Vec3, Vec3>>(Vec3 ref, Vec3 dir)>;
+
+/// ∫ pdf_emitter(object, ref, p(w), n) dw over the sphere of directions w, estimated with
+/// stratified uniform directions (n x n strata, one jittered sample each).
+double integrate_pdf(const LightSet& lights, int object, Vec3 ref, const HitFn& hit, int n = 1000) {
+    Pcg32 rng(9);
+    double sum = 0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const Vec3 w = sample_uniform_sphere({(i + rng.next_float()) / n, (j + rng.next_float()) / n});
+            if (const auto h = hit(ref, w)) sum += lights.pdf_emitter(object, ref, h->first, h->second);
+        }
+    return sum / (double(n) * n * uniform_sphere_pdf());
+}
+
+/// Monte Carlo irradiance at ref with normal n from next-event samples: E = mean of Li cos / pdf.
+double irradiance(const LightSet& lights, Vec3 ref, Vec3 n, int samples) {
+    Pcg32 rng(10);
+    double sum = 0;
+    for (int i = 0; i < samples; ++i) {
+        const std::optional<LightSample> s = lights.sample(ref, rng.next_float(), rng.next_vec2());
+        if (s) sum += luminance(s->Li) * std::max(0.0f, dot(s->wi, n)) / s->pdf;
+    }
+    return sum / samples;
+}
+
+/// Form factor from a differential area to a parallel a x b rectangle at distance c, with the
+/// normal of the area through one corner of the rectangle (Howell's catalogue, B-3).
+double corner_form_factor(double a, double b, double c) {
+    const double x = a / c, y = b / c, sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
+    return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2 * pi);
+}
+
+std::optional<LightSample> sample_once(const LightSet& lights, Vec3 ref, float u_select = 0.5f) {
+    return lights.sample(ref, u_select, {0.3f, 0.6f});
+}
+
+TEST(LightSet, SceneWithoutEmittersHasNoLights) {
+    const Lit lit(scene_with({ceiling_light(1, 1, Rgb{})}));
+    EXPECT_TRUE(lit.lights.empty());
+    EXPECT_FALSE(sample_once(lit.lights, origin).has_value());
+    EXPECT_EQ(lit.lights.pdf_emitter(0, origin, {0, 0, 1}, {0, 0, -1}), 0.0f);
+}
+
+TEST(LightSet, QuadLightRadianceIsItsEmissionOnTheFrontSide) {
+    const Rgb emission{1, 2, 3};
+    const Lit lit(scene_with({ceiling_light(1, 1, emission)}));
+    Pcg32 rng(1);
+    for (int i = 0; i < 100; ++i) {
+        const std::optional<LightSample> s = lit.lights.sample(origin, rng.next_float(), rng.next_vec2());
+        ASSERT_TRUE(s.has_value());
+        EXPECT_EQ(s->Li, emission);
+        EXPECT_FALSE(s->is_delta);
+        EXPECT_NEAR(s->p.z, 1.0f, 1e-6f);
+        EXPECT_LE(std::max(std::abs(s->p.x), std::abs(s->p.y)), 0.5f + 1e-6f) << "on the quad";
+        EXPECT_NEAR(s->n.z, -1.0f, 1e-6f);
+        EXPECT_NEAR(length(s->p - origin), s->distance, 1e-5f);
+        EXPECT_NEAR(dot(s->wi, (s->p - origin) / s->distance), 1.0f, 1e-5f);
+    }
+}
+
+TEST(LightSet, OneSidedQuadLightIsDarkBehind) {
+    const Lit lit(scene_with({ceiling_light(1, 1, {1, 1, 1})}));
+    Pcg32 rng(2);
+    for (int i = 0; i < 100; ++i)
+        EXPECT_FALSE(lit.lights.sample({0.2f, -0.1f, 2}, rng.next_float(), rng.next_vec2()).has_value());
+}
+
+TEST(LightSet, TwoSidedQuadLightShinesFromBothSides) {
+    const Rgb emission{1, 2, 3};
+    const Lit lit(scene_with({ceiling_light(1, 1, emission, 0, 0, true)}));
+    for (const Vec3 ref : {origin, Vec3{0.2f, -0.1f, 2}}) {
+        const std::optional<LightSample> s = sample_once(lit.lights, ref);
+        ASSERT_TRUE(s.has_value());
+        EXPECT_EQ(s->Li, emission);
+    }
+}
+
+TEST(LightSet, SamplePdfMatchesPdfEmitter) {
+    const Lit lit(scene_with({ceiling_light(1, 1, {1, 1, 1}), object(Sphere{{3, 0, 1}, 0.5f}, {2, 2, 2})}));
+    Pcg32 rng(3);
+    int checked = 0;
+    for (int i = 0; i < 1000; ++i) {
+        const Vec3 ref{rng.next_float() - 0.5f, rng.next_float() - 0.5f, -rng.next_float()};
+        const std::optional<LightSample> s = lit.lights.sample(ref, rng.next_float(), rng.next_vec2());
+        if (!s) continue;  // the back of the sphere
+        const int light = s->p.x > 2 ? 1 : 0;
+        EXPECT_NEAR(lit.lights.pdf_emitter(light, ref, s->p, s->n), s->pdf, 1e-4f * s->pdf);
+        ++checked;
+    }
+    EXPECT_GT(checked, 500);
+}
+
+TEST(LightSet, QuadLightPdfIntegratesToOneOverSolidAngle) {
+    const Vec3 corner{-0.5f, -0.3f, 1}, edge_u{0, 1, 0}, edge_v{1.5f, 0, 0};
+    const Lit lit(scene_with({object(make_quad(corner, edge_u, edge_v), {1, 1, 1})}));
+    const HitFn hit_quad = [&](Vec3 ref, Vec3 dir) -> std::optional<std::pair<Vec3, Vec3>> {
+        const Vec3 n = normalize(cross(edge_u, edge_v));
+        const float t = dot(corner - ref, n) / dot(dir, n);
+        if (!(t > 0)) return std::nullopt;
+        const Vec3 p = ref + dir * t;
+        const float a = dot(p - corner, edge_u) / length2(edge_u), b = dot(p - corner, edge_v) / length2(edge_v);
+        if (a < 0 || a > 1 || b < 0 || b > 1) return std::nullopt;
+        return std::pair{p, n};
+    };
+    for (const Vec3 ref : {origin, Vec3{0.3f, 0.2f, 0.5f}, Vec3{2, -1, 0}})
+        EXPECT_NEAR(integrate_pdf(lit.lights, 0, ref, hit_quad), 1.0, 0.02) << to_string(ref);
+}
+
+// Area sampling covers the whole sphere, so over the directions that see the sphere the pdf
+// integrates to the visible cap's share of the area: 2 pi R h / (4 pi R^2) with cap height
+// h = R (1 - R / D) at distance D from the centre, i.e. (1 - R / D) / 2.
+TEST(LightSet, SphereLightPdfIntegratesToItsVisibleFractionOverSolidAngle) {
+    const Vec3 center{0, 0, 3};
+    const float radius = 1;
+    const Lit lit(scene_with({object(Sphere{center, radius}, {1, 1, 1})}));
+    const HitFn hit_sphere = [&](Vec3 ref, Vec3 dir) -> std::optional<std::pair<Vec3, Vec3>> {
+        const Vec3 oc = ref - center;
+        const float b = dot(oc, dir), disc = b * b - (length2(oc) - radius * radius);
+        if (disc < 0 || -b - std::sqrt(disc) <= 0) return std::nullopt;
+        const Vec3 p = ref + dir * (-b - std::sqrt(disc));
+        return std::pair{p, normalize(p - center)};
+    };
+    const double visible_fraction = (1 - radius / length(center - origin)) / 2;  // 1/3 here
+    EXPECT_NEAR(integrate_pdf(lit.lights, 0, origin, hit_sphere), visible_fraction, 0.02 * visible_fraction);
+}
+
+// A light of area A much smaller than its distance d: E = L A cos_receiver cos_light / d^2.
+TEST(LightSet, SmallDistantLightGivesInverseSquareIrradiance) {
+    const float size = 0.01f, radiance = 5;
+    const Lit lit(scene_with({ceiling_light(size, 1, {radiance, radiance, radiance})}));
+    const double expected = radiance * size * size;  // cos_receiver = cos_light = 1, d = 1
+    EXPECT_NEAR(irradiance(lit.lights, origin, {0, 0, 1}, 10'000), expected, 0.01 * expected);
+    // Tilting the receiver by 60 degrees halves cos_receiver.
+    const Vec3 tilted{std::sqrt(3.0f) / 2, 0, 0.5f};
+    EXPECT_NEAR(irradiance(lit.lights, origin, tilted, 10'000), expected / 2, 0.01 * expected / 2);
+}
+
+// E = pi L F for a Lambertian emitter, F the form factor of the 2 x 2 ceiling light one unit
+// above the receiver: four 1 x 1 rectangles each with a corner straight overhead.
+TEST(LightSet, LargeQuadLightIrradianceMatchesTheFormFactorOfARectangle) {
+    const float radiance = 2;
+    const Lit lit(scene_with({ceiling_light(2, 1, {radiance, radiance, radiance})}));
+    const double expected = pi * radiance * 4 * corner_form_factor(1, 1, 1);
+    EXPECT_NEAR(irradiance(lit.lights, origin, {0, 0, 1}, 200'000), expected, 0.01 * expected);
+}
+
+TEST(LightSet, LightsAreChosenInProportionToTheirPower) {
+    // Same size and distance, emission 1 and 3: power 1 : 3.
+    const Lit lit(scene_with({ceiling_light(1, 1, {1, 1, 1}, -2), ceiling_light(1, 1, {3, 3, 3}, 2)}));
+    constexpr int n = 100'000;
+    Pcg32 rng(4);
+    int chose_bright = 0;
+    for (int i = 0; i < n; ++i) {
+        const std::optional<LightSample> s = lit.lights.sample(origin, rng.next_float(), rng.next_vec2());
+        ASSERT_TRUE(s.has_value());
+        chose_bright += s->p.x > 0;
+    }
+    // Standard error sqrt(0.25 * 0.75 / n) = 0.0014: the bound is 7 of them.
+    EXPECT_NEAR(double(chose_bright) / n, 0.75, 0.01);
+}
+
+PointLightDesc point_light(Vec3 position, Rgb intensity) {
+    PointLightDesc light;
+    light.position = position;
+    light.intensity = intensity;
+    return light;
+}
+
+TEST(LightSet, PointLightRadianceFallsOffWithTheInverseSquareOfDistance) {
+    SceneDesc desc = empty_scene();
+    desc.point_lights.push_back(point_light({0, 0, 2}, {8, 4, 2}));
+    const Lit lit(std::move(desc));
+    for (const Vec3 ref : {origin, Vec3{0, 0, -2}, Vec3{3, 0, -2}}) {
+        const std::optional<LightSample> s = sample_once(lit.lights, ref);
+        ASSERT_TRUE(s.has_value());
+        const float d2 = length2(Vec3{0, 0, 2} - ref);
+        EXPECT_TRUE(s->is_delta);
+        EXPECT_EQ(s->pdf, 1.0f) << "the only light, sampled with certainty";
+        EXPECT_NEAR(s->distance * s->distance, d2, 1e-5f * d2);
+        EXPECT_NEAR(s->Li.r, 8 / d2, 1e-5f * 8 / d2);
+        EXPECT_NEAR(s->Li.b, 2 / d2, 1e-5f * 2 / d2);
+    }
+}
+
+// A spot light pointing down, full inside 25 degrees, dark beyond 30, smoothly fading between.
+TEST(LightSet, SpotLightIsFullInsideItsInnerConeAndDarkOutsideItsOuterCone) {
+    SceneDesc desc = empty_scene();
+    PointLightDesc spot = point_light({0, 0, 1}, {1, 1, 1});
+    spot.type = PointLightType::spot;
+    spot.direction = {0, 0, -1};
+    spot.cone_angle_deg = 30;
+    spot.falloff_start_deg = 25;
+    desc.point_lights.push_back(spot);
+    const Lit lit(std::move(desc));
+    const auto li_at_angle = [&](float degrees) {
+        const Vec3 ref{std::tan(degrees * pi / 180), 0, 0};  // one unit below the spot
+        const std::optional<LightSample> s = sample_once(lit.lights, ref);
+        return s ? s->Li.r * length2(ref - spot.position) : 0.0f;  // intensity towards ref
+    };
+    EXPECT_NEAR(li_at_angle(0), 1.0f, 1e-5f);
+    EXPECT_NEAR(li_at_angle(24), 1.0f, 1e-5f);
+    EXPECT_GT(li_at_angle(27.5f), 0.0f);
+    EXPECT_LT(li_at_angle(27.5f), 1.0f);
+    EXPECT_GT(li_at_angle(26), li_at_angle(29)) << "fades towards the edge";
+    EXPECT_EQ(li_at_angle(31), 0.0f);
+    EXPECT_FALSE(sample_once(lit.lights, {std::tan(pi / 4), 0, 0}).has_value()) << "outside: no sample";
+}
+
+}  // namespace
+}  // namespace steadylight

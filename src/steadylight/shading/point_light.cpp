@@ -1,0 +1,60 @@
+// Point and spot lights: radiant intensity from one point, a spot light limited to a cone with
+// a smooth falloff at its edge. They cannot be hit by rays, only sampled.
+#include <cmath>
+
+#include "steadylight/shading/light.h"
+
+namespace steadylight {
+namespace {
+
+class PointLight final : public Light {
+public:
+    explicit PointLight(const PointLightDesc& desc)
+        : m_desc(desc),
+          m_cos_cone(std::cos(desc.cone_angle_deg * pi / 180)),
+          m_cos_falloff_start(std::cos(desc.falloff_start_deg * pi / 180)) {}
+
+    std::optional<LightSample> sample_li(Vec3 ref, Vec2) const override {
+        LightSample s;
+        s.p = m_desc.position;
+        const Vec3 d = s.p - ref;
+        s.distance = length(d);
+        if (!(s.distance > 0)) return std::nullopt;
+        s.wi = d / s.distance;
+        s.Li = m_desc.intensity * (falloff(-s.wi) / (s.distance * s.distance));
+        s.pdf = 1;
+        s.is_delta = true;
+        if (is_black(s.Li)) return std::nullopt;
+        return s;
+    }
+
+    float pdf_li(Vec3, Vec3, Vec3) const override { return 0; }
+
+    float power() const override {
+        const float lum = luminance(m_desc.intensity);
+        if (m_desc.type == PointLightType::point) return 4 * pi * lum;
+        // The cone's solid angle up to the middle of the falloff band.
+        return 2 * pi * (1 - 0.5f * (m_cos_cone + m_cos_falloff_start)) * lum;
+    }
+
+private:
+    /// 1 inside the spot's inner cone, 0 outside it, smoothstep between (pbrt-v4 SpotLight).
+    float falloff(Vec3 w) const {
+        if (m_desc.type == PointLightType::point) return 1;
+        const float cos_theta = dot(w, m_desc.direction);
+        if (cos_theta >= m_cos_falloff_start) return 1;
+        if (cos_theta <= m_cos_cone) return 0;
+        const float t = (cos_theta - m_cos_cone) / (m_cos_falloff_start - m_cos_cone);
+        return t * t * (3 - 2 * t);
+    }
+
+    PointLightDesc m_desc;
+    float m_cos_cone;
+    float m_cos_falloff_start;
+};
+
+}  // namespace
+
+std::unique_ptr<Light> make_point_light(const PointLightDesc& desc) { return std::make_unique<PointLight>(desc); }
+
+}  // namespace steadylight

@@ -1,0 +1,22 @@
+// The local geometry at a ray hit, in world space: position, normals and which object it is.
+// Computed from the object-space shape and the object's placement at the frame.
+#pragma once
+
+#include "steadylight/scene/scene.h"
+#include "steadylight/trace/ray_tracer.h"
+
+namespace steadylight {
+
+struct SurfacePoint {
+    Vec3 p;
+    Vec3 ng;  // unit geometric normal on the shape's front side (outside, or as vertex normals say)
+    Vec3 ns;  // unit shading normal, in the same hemisphere as ng
+    int object = -1;
+};
+
+SurfacePoint make_surface_point(const Scene& scene, const FrameState& frame, const Ray& ray, const Hit& hit);
+
+/// Radiance that `object` emits from a point with front normal `ng` towards direction `w`.
+Rgb emitted_radiance(const ObjectDesc& object, Vec3 ng, Vec3 w);
+
+}  // namespace steadylight

@@ -1,0 +1,226 @@
+#include "steadylight/trace/ray_tracer.h"
+
+#include <cmath>
+#include <utility>
+#include <stdexcept>
+
+#include "steadylight/trace/embree_device.h"
+
+namespace steadylight {
+namespace {
+
+constexpr unsigned static_mask = 1u;
+constexpr unsigned dynamic_mask = 2u;
+
+unsigned ray_mask(Visibility visibility) {
+    return visibility == Visibility::static_only ? static_mask : ~0u;
+}
+
+RTCGeometry make_triangle_geometry(const TriangleMesh& mesh, const Transform& to_space) {
+    RTCGeometry geometry = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        const Vec3 p = to_space.point(mesh.positions[i]);
+        vertices[3 * i] = p.x;
+        vertices[3 * i + 1] = p.y;
+        vertices[3 * i + 2] = p.z;
+    }
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.indices.size() / 3));
+    for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = unsigned(mesh.indices[i]);
+    return geometry;
+}
+
+RTCGeometry make_sphere_geometry(Vec3 center, float radius) {
+    RTCGeometry geometry = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    v[0] = center.x;
+    v[1] = center.y;
+    v[2] = center.z;
+    v[3] = radius;
+    return geometry;
+}
+
+/// The uniform scale of a similarity transform, or nothing when it scales unevenly or shears.
+std::optional<float> uniform_scale(const Transform& t) {
+    const Vec3 x = t.vector({1, 0, 0}), y = t.vector({0, 1, 0}), z = t.vector({0, 0, 1});
+    const float s = length(x);
+    const float tolerance = 1e-5f * s;
+    if (std::abs(length(y) - s) > tolerance || std::abs(length(z) - s) > tolerance) return std::nullopt;
+    if (std::abs(dot(x, y)) > tolerance * s || std::abs(dot(y, z)) > tolerance * s ||
+        std::abs(dot(x, z)) > tolerance * s)
+        return std::nullopt;
+    return s;
+}
+
+/// The geometry placed in world space, or nullptr for a sphere that is not scaled uniformly.
+RTCGeometry make_world_geometry(const Geometry& geometry, const Transform& world_from_object) {
+    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) return make_triangle_geometry(*mesh, world_from_object);
+    const Sphere& sphere = std::get<Sphere>(geometry);
+    const std::optional<float> scale = uniform_scale(world_from_object);
+    if (!scale) return nullptr;
+    return make_sphere_geometry(world_from_object.point(sphere.center), sphere.radius * *scale);
+}
+
+/// Attaches and releases the geometry (the scene keeps it alive), returning its ID.
+unsigned attach(RTCScene scene, RTCGeometry geometry) {
+    rtcCommitGeometry(geometry);
+    const unsigned id = rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+    return id;
+}
+
+RTCRay make_embree_ray(const Ray& ray, Visibility visibility) {
+    RTCRay r;
+    r.org_x = ray.o.x;
+    r.org_y = ray.o.y;
+    r.org_z = ray.o.z;
+    r.tnear = 0;
+    r.dir_x = ray.d.x;
+    r.dir_y = ray.d.y;
+    r.dir_z = ray.d.z;
+    r.time = 0;
+    r.tfar = ray.tmax;
+    r.mask = ray_mask(visibility);
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+
+}  // namespace
+
+RayTracer::RayTracer(const Scene& scene, const FrameState& frame) : m_scene(scene) {
+    m_static_scene = rtcNewScene(embree_device());
+    rtcSetSceneBuildQuality(m_static_scene, RTC_BUILD_QUALITY_HIGH);
+    m_instance_scene = rtcNewScene(embree_device());
+    rtcSetSceneFlags(m_instance_scene, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(m_instance_scene, RTC_BUILD_QUALITY_LOW);
+    m_object_scenes.assign(scene.objects().size(), nullptr);
+
+    for (const int object : scene.static_objects()) add_static_object(object, frame.world_from_object[size_t(object)]);
+    for (const int object : scene.dynamic_objects()) add_instanced_object(object, dynamic_mask);
+    rtcCommitScene(m_static_scene);
+    set_frame(frame);
+}
+
+RayTracer::~RayTracer() {
+    rtcReleaseScene(m_static_scene);
+    rtcReleaseScene(m_instance_scene);
+    for (RTCScene s : m_object_scenes)
+        if (s) rtcReleaseScene(s);
+}
+
+RTCScene build_flat_embree_scene(const Scene& scene, const FrameState& frame) {
+    RTCScene flat = rtcNewScene(embree_device());
+    rtcSetSceneBuildQuality(flat, RTC_BUILD_QUALITY_HIGH);
+    for (int object = 0; object < int(scene.objects().size()); ++object) {
+        const RTCGeometry g = make_world_geometry(scene.object(object).geometry, frame.world_from_object[size_t(object)]);
+        if (!g) throw std::runtime_error("build_flat_embree_scene: unevenly scaled sphere");
+        attach(flat, g);
+    }
+    rtcCommitScene(flat);
+    return flat;
+}
+
+void RayTracer::add_static_object(int object, const Transform& world_from_object) {
+    const RTCGeometry g = make_world_geometry(m_scene.object(object).geometry, world_from_object);
+    // Embree spheres cannot be stretched: an unevenly scaled sphere goes in as an instance.
+    if (!g) return add_instanced_object(object, static_mask);
+    const unsigned id = attach(m_static_scene, g);
+    m_static_geometry_object.resize(id + 1, -1);
+    m_static_geometry_object[id] = object;
+}
+
+void RayTracer::add_instanced_object(int object, unsigned mask) {
+    // Build the object once, in its own space; each frame only moves its instance.
+    RTCScene object_scene = rtcNewScene(embree_device());
+    rtcSetSceneBuildQuality(object_scene, RTC_BUILD_QUALITY_HIGH);
+    const Geometry& geometry = m_scene.object(object).geometry;
+    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry))
+        attach(object_scene, make_triangle_geometry(*mesh, Transform{}));
+    else
+        attach(object_scene, make_sphere_geometry(std::get<Sphere>(geometry).center, std::get<Sphere>(geometry).radius));
+    rtcCommitScene(object_scene);
+    m_object_scenes[size_t(object)] = object_scene;
+
+    RTCGeometry instance = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instance, object_scene);
+    rtcSetGeometryMask(instance, mask);
+    const unsigned id = rtcAttachGeometry(m_instance_scene, instance);
+    rtcReleaseGeometry(instance);
+    m_instance_object.resize(id + 1, -1);
+    m_instance_object[id] = object;
+    m_has_static_instances |= mask == static_mask;
+}
+
+void RayTracer::set_frame(const FrameState& frame) {
+    for (size_t id = 0; id < m_instance_object.size(); ++id) {
+        const Transform& t = frame.world_from_object[size_t(m_instance_object[id])];
+        RTCGeometry instance = rtcGetGeometry(m_instance_scene, unsigned(id));
+        rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &t.m[0][0]);
+        rtcCommitGeometry(instance);
+    }
+    rtcCommitScene(m_instance_scene);
+    RTCBounds bounds;
+    rtcGetSceneBounds(m_instance_scene, &bounds);
+    // Pad the box a little so that float rounding in the slab test never loses a grazing hit.
+    const Vec3 lo{bounds.lower_x, bounds.lower_y, bounds.lower_z}, hi{bounds.upper_x, bounds.upper_y, bounds.upper_z};
+    const Vec3 pad = (hi - lo) * 1e-4f + Vec3{1, 1, 1} * ray_epsilon(max(-lo, hi));
+    m_instance_bounds_lo = lo - pad;
+    m_instance_bounds_hi = hi + pad;
+    if (m_instance_object.empty()) m_instance_bounds_lo = {1, 1, 1}, m_instance_bounds_hi = {-1, -1, -1};
+}
+
+bool RayTracer::may_hit_instances(const Ray& ray, float tmax, Visibility visibility) const {
+    if (visibility == Visibility::static_only && !m_has_static_instances) return false;
+    // Slab test against the instances' bounding box: most rays pass far from the few moving
+    // objects, and this is cheaper than a second Embree query that finds nothing.
+    float t0 = 0, t1 = tmax;
+    for (int axis = 0; axis < 3; ++axis) {
+        const float inv_d = 1 / ray.d[axis];
+        float t_near = (m_instance_bounds_lo[axis] - ray.o[axis]) * inv_d;
+        float t_far = (m_instance_bounds_hi[axis] - ray.o[axis]) * inv_d;
+        if (t_near > t_far) std::swap(t_near, t_far);
+        t0 = t_near > t0 ? t_near : t0;
+        t1 = t_far < t1 ? t_far : t1;
+        if (!(t0 <= t1)) return false;
+    }
+    return true;
+}
+
+std::optional<Hit> RayTracer::intersect(const Ray& ray, Visibility visibility) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rayhit;
+    rayhit.ray = make_embree_ray(ray, visibility);
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_static_scene, &context, &rayhit);
+    // The instance query starts with tfar cut down to the static hit, so it only looks closer.
+    if (may_hit_instances(ray, rayhit.ray.tfar, visibility)) rtcIntersect1(m_instance_scene, &context, &rayhit);
+    if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+    Hit hit;
+    hit.t = rayhit.ray.tfar;
+    hit.primitive = int(rayhit.hit.primID);
+    hit.u = rayhit.hit.u;
+    hit.v = rayhit.hit.v;
+    hit.object = rayhit.hit.instID[0] != RTC_INVALID_GEOMETRY_ID
+                     ? m_instance_object[rayhit.hit.instID[0]]
+                     : m_static_geometry_object[rayhit.hit.geomID];
+    return hit;
+}
+
+bool RayTracer::occluded(const Ray& ray, Visibility visibility) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = make_embree_ray(ray, visibility);
+    rtcOccluded1(m_static_scene, &context, &r);
+    if (r.tfar == -infinity) return true;
+    if (may_hit_instances(ray, r.tfar, visibility)) rtcOccluded1(m_instance_scene, &context, &r);
+    return r.tfar == -infinity;
+}
+
+}  // namespace steadylight

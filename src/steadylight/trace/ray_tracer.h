@@ -1,0 +1,67 @@
+// RayTracer: the renderer's only door to Embree (with embree_device.h). Static objects are baked
+// into world space in one scene built once at high quality; dynamic objects are built once each
+// in object space and placed per frame as instances in a second, small scene (STYLE.md §6).
+// A query asks the static scene and then, up to the static hit, the instance scene. Rays can see
+// everything or the static objects only: the static pass and negative photons need the latter.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <optional>
+#include <vector>
+
+#include "steadylight/base/ray.h"
+#include "steadylight/scene/scene.h"
+
+namespace steadylight {
+
+enum class Visibility { everything, static_only };
+
+/// The nearest surface a ray meets: which object and primitive, and where along the ray.
+struct Hit {
+    float t = 0;
+    int object = -1;
+    int primitive = -1;
+    float u = 0, v = 0;  // barycentrics of vertices 1 and 2 (triangles)
+};
+
+class RayTracer {
+public:
+    /// Builds the static scene and the dynamic objects' own scenes, and places the dynamic
+    /// objects as at `frame`.
+    RayTracer(const Scene& scene, const FrameState& frame);
+    ~RayTracer();
+    RayTracer(const RayTracer&) = delete;
+    RayTracer& operator=(const RayTracer&) = delete;
+
+    /// Moves the dynamic objects to their placement at `frame` (cheap: instance transforms only).
+    void set_frame(const FrameState& frame);
+
+    std::optional<Hit> intersect(const Ray& ray, Visibility visibility = Visibility::everything) const;
+    bool occluded(const Ray& ray, Visibility visibility = Visibility::everything) const;
+
+    /// The Embree scenes, for the benchmark that compares this interface with raw Embree calls.
+    RTCScene static_embree_scene() const { return m_static_scene; }
+    RTCScene instance_embree_scene() const { return m_instance_scene; }
+
+private:
+    void add_static_object(int object, const Transform& world_from_object);
+    void add_instanced_object(int object, unsigned mask);
+    /// False when the ray cannot meet any instance before `tmax`, so Embree need not be asked.
+    bool may_hit_instances(const Ray& ray, float tmax, Visibility visibility) const;
+
+    const Scene& m_scene;
+    RTCScene m_static_scene = nullptr;
+    RTCScene m_instance_scene = nullptr;  // dynamic objects, and static ones that cannot be baked
+    std::vector<RTCScene> m_object_scenes;
+    std::vector<int> m_static_geometry_object;    // static scene geomID -> object
+    std::vector<int> m_instance_object;           // instance scene geomID -> object
+    bool m_has_static_instances = false;
+    Vec3 m_instance_bounds_lo, m_instance_bounds_hi;  // of the instance scene at this frame; empty if none
+};
+
+/// One flat Embree scene holding every object placed as at `frame`, for the benchmark that
+/// compares RayTracer with the plainest use of raw Embree. The caller releases it.
+RTCScene build_flat_embree_scene(const Scene& scene, const FrameState& frame);
+
+}  // namespace steadylight

@@ -1,0 +1,91 @@
+#include "steadylight/trace/ray_tracer.h"
+
+#include <gtest/gtest.h>
+
+#include "support/scene_builder.h"
+
+namespace steadylight {
+namespace {
+
+using testing::add_material;
+using testing::add_object;
+using testing::make_empty_scene;
+
+/// A floor quad (static) and a unit sphere (dynamic) moving along +x by one unit per frame.
+SceneDesc floor_and_moving_sphere() {
+    SceneDesc desc = make_empty_scene({0, 5, 0}, {0, 0, 0});
+    desc.frame_count = 10;
+    desc.fps = 1;
+    const int white = add_material(desc, {});
+    add_object(desc, make_quad({-10, 0, -10}, {0, 0, 20}, {20, 0, 0}), white);
+    const int sphere = add_object(desc, Sphere{{0, 0, 0}, 1}, white);
+    desc.objects[size_t(sphere)].placement[0].translation_track =
+        Track<Vec3>{Interpolation::linear, {0, 10}, {{0, 2, 0}, {10, 2, 0}}};
+    return desc;
+}
+
+const Ray down_at_origin{{0, 10, 0}, {0, -1, 0}};
+
+TEST(RayTracer, MissingEverythingGivesNoHit) {
+    const Scene scene(floor_and_moving_sphere());
+    const RayTracer tracer(scene, scene.evaluate(0));
+    EXPECT_FALSE(tracer.intersect({{0, 10, 0}, {0, 1, 0}}).has_value());
+}
+
+TEST(RayTracer, DynamicObjectIsHitBeforeTheFloor) {
+    const Scene scene(floor_and_moving_sphere());
+    const RayTracer tracer(scene, scene.evaluate(0));
+    const std::optional<Hit> hit = tracer.intersect(down_at_origin);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->object, 1);
+    EXPECT_NEAR(hit->t, 7, 1e-4f);  // sphere top at y = 3
+}
+
+TEST(RayTracer, StaticOnlyRaysPassThroughDynamicObjects) {
+    const Scene scene(floor_and_moving_sphere());
+    const RayTracer tracer(scene, scene.evaluate(0));
+    const std::optional<Hit> hit = tracer.intersect(down_at_origin, Visibility::static_only);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->object, 0);
+    EXPECT_NEAR(hit->t, 10, 1e-4f);
+    EXPECT_TRUE(tracer.occluded(down_at_origin, Visibility::everything));
+}
+
+TEST(RayTracer, OcclusionStopsAtTmax) {
+    const Scene scene(floor_and_moving_sphere());
+    const RayTracer tracer(scene, scene.evaluate(0));
+    EXPECT_FALSE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 6.5f}));
+    EXPECT_TRUE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 7.5f}));
+}
+
+TEST(RayTracer, SetFrameMovesDynamicObjects) {
+    const Scene scene(floor_and_moving_sphere());
+    RayTracer tracer(scene, scene.evaluate(0));
+    tracer.set_frame(scene.evaluate(5));  // the sphere is now at x = 5
+    EXPECT_EQ(tracer.intersect(down_at_origin)->object, 0);
+    const std::optional<Hit> hit = tracer.intersect({{5, 10, 0}, {0, -1, 0}});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->object, 1);
+}
+
+TEST(RayTracer, RayFromInsideASphereHitsItsFarSide) {
+    const Scene scene(floor_and_moving_sphere());
+    const RayTracer tracer(scene, scene.evaluate(0));
+    const std::optional<Hit> hit = tracer.intersect({{0, 2, 0}, {1, 0, 0}});
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->t, 1, 1e-4f);
+}
+
+TEST(RayTracer, UnevenlyScaledStaticSphereIsAnEllipsoid) {
+    SceneDesc desc = make_empty_scene({0, 5, 0}, {0, 0, 0});
+    add_object(desc, Sphere{{0, 0, 0}, 1}, add_material(desc, {}));
+    desc.objects[0].placement[0].scale = {3, 1, 1};
+    const Scene scene(std::move(desc));
+    const RayTracer tracer(scene, scene.evaluate(0));
+    const std::optional<Hit> hit = tracer.intersect({{-10, 0, 0}, {1, 0, 0}});
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->t, 7, 1e-3f);
+}
+
+}  // namespace
+}  // namespace steadylight
