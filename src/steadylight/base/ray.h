@@ -29,12 +29,15 @@ inline Ray spawn_ray(Vec3 p, Vec3 ng, Vec3 d) {
     return {p + ng * (side * ray_epsilon(p)), d, infinity};
 }
 
-/// A shadow ray from surface point `p` to a point `target` (on a light), stopping just short.
+/// A shadow ray from surface point `p` to a point `target` (on a light), stopping short of the
+/// target by the same epsilon, so that the light's own surface never occludes it.
 inline Ray spawn_ray_to(Vec3 p, Vec3 ng, Vec3 target) {
     Ray ray = spawn_ray(p, ng, target - p);
+    // Aim from the lifted origin: aiming from p would make the ray miss the target's distance.
+    ray.d = target - ray.o;
     const float distance = length(ray.d);
     ray.d = ray.d / distance;
-    ray.tmax = distance * (1 - 1e-4f);
+    ray.tmax = std::max(0.0f, distance - ray_epsilon(target));
     return ray;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "steadylight/base/vec.h"
 
@@ -30,6 +31,21 @@ constexpr float uniform_sphere_pdf() { return 1 / (4 * pi); }
 inline Vec2 sample_uniform_triangle(Vec2 u) {
     const float su = std::sqrt(u.x);
     return {1 - su, u.y * su};
+}
+
+/// Sample `index` of `count` stratified points in [0,1)^2: a Hammersley set (x stratified by the
+/// index, y by its base-2 radical inverse) shifted by `shift` modulo 1 (Cranley-Patterson), so
+/// each pixel gets its own well-spread set. Used for pixel positions (anti-aliasing).
+inline Vec2 stratified_2d(uint32_t index, uint32_t count, Vec2 shift) {
+    uint32_t bits = index;
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    const float x = (float(index) + 0.5f) / float(count) + shift.x;
+    const float y = float(bits) * 0x1p-32f + shift.y;
+    return {std::min(x - std::floor(x), 0x1.fffffep-1f), std::min(y - std::floor(y), 0x1.fffffep-1f)};
 }
 
 /// Power heuristic with beta = 2 (Veach 1997) for one sample from each of two strategies.

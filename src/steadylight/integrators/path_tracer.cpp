@@ -84,10 +84,12 @@ Image render_path_traced(const FrameContext& context, const PathTracerSettings& 
     parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
         for (int y = y0; y < y1; ++y) {
             for (int x = x0; x < x1; ++x) {
-                Pcg32 rng(hash_ids(uint64_t(context.frame.frame), uint64_t(y) * uint64_t(camera.width) + uint64_t(x)));
+                Pcg32 rng(hash_ids(uint64_t(context.frame.frame), uint64_t(y) * uint64_t(camera.width) + uint64_t(x),
+                                   settings.seed));
                 Rgb sum;
+                const Vec2 shift = rng.next_vec2();
                 for (int s = 0; s < settings.samples_per_pixel; ++s) {
-                    const Vec2 jitter = rng.next_vec2();
+                    const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(settings.samples_per_pixel), shift);
                     const Rgb L = trace_path(context, camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y),
                                              rng, settings);
                     // A NaN or infinity from a degenerate path is dropped, not smeared over the frame.

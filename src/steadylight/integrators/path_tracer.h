@@ -17,6 +17,7 @@ struct PathTracerSettings {
     int samples_per_pixel = 64;
     int max_depth = 64;           // bounces; Russian roulette usually ends paths much earlier
     int roulette_start_depth = 3; // bounces before Russian roulette may end a path
+    uint64_t seed = 0;            // another seed gives independent noise (for reference images)
 };
 
 /// Called after each finished tile with (tiles done, tiles in all); may be called concurrently.

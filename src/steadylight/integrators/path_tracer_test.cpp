@@ -55,6 +55,21 @@ TEST(PathTracer, PointLightOverDiffuseFloorMatchesInverseSquareLaw) {
     EXPECT_NEAR(L.r, 0.5f / pi * 10 * cos_theta / d2, 2e-3f);
 }
 
+/// A small quad light far above a diffuse floor, seen at a slant: L = rho / pi * Le A cos_r cos_l
+/// / d^2. Shadow rays must reach the light itself without being stopped by it, also far from the
+/// origin where ray offsets are large (the scene sits at x = 100).
+TEST(PathTracer, SmallQuadLightOverDiffuseFloorMatchesInverseSquareLaw) {
+    SceneDesc desc = make_empty_scene({103, 0.5f, 0}, {103, 0, 0}, 1, 1, 1);
+    const int white = add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}});
+    add_object(desc, make_quad({50, 0, -50}, {0, 0, 100}, {100, 0, 0}), white);
+    add_object(desc, make_quad({99.95f, 5, -0.05f}, {0.1f, 0, 0}, {0, 0, 0.1f}), white, {100, 100, 100});
+    const Scene scene(std::move(desc));
+    const Rgb L = render(scene, 0, {.samples_per_pixel = 64, .max_depth = 1}).at(0, 0);
+    const float d2 = 3 * 3 + 5 * 5, cos = 5 / std::sqrt(d2);
+    const float expected = 0.5f / pi * 100 * 0.01f * cos * cos / d2;
+    EXPECT_NEAR(L.r, expected, 0.01f * expected);
+}
+
 TEST(PathTracer, SameImageForOneAndTwoThreads) {
     Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/ball.json"));
     scene.set_resolution(40, 30);
