@@ -4,7 +4,9 @@
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <memory>
 #include <regex>
 
@@ -37,13 +39,34 @@ int main(int argc, char** argv) {
     CLI::App* render = app.add_subcommand("render", "Render the frames of a scene");
     render->add_option("scene", settings.scene_file, "Scene file (JSON)")->required();
     render->add_option("--frames", frames, "Frame N or inclusive range A-B (default: all)");
-    render->add_option("--spp", settings.path.samples_per_pixel, "Samples per pixel")
-        ->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    std::optional<int> spp;
+    render->add_option("--spp", spp, "Samples per pixel (default: 64 for path, 4 for photon)")
+        ->check(CLI::Range(1, 1 << 20));
     render->add_option("--size", size, "Image size WIDTHxHEIGHT (default: the scene's)");
     render->add_option("--threads", threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
     render->add_option("--out", settings.out_dir, "Output folder")->capture_default_str();
-    render->add_option("--integrator", settings.integrator, "Integrator: path")
-        ->capture_default_str()->check(CLI::IsMember({"path"}));
+    render->add_option("--method,--integrator", settings.method,
+                       "path: path-traced ground truth; photon: photon mapping with final gathering")
+        ->capture_default_str()->check(CLI::IsMember({"path", "photon"}));
+    PhotonMappingSettings& photon = settings.photon;
+    render->add_option("--photons", photon.photons.global_photons, "photon: paths emitted for the global map")
+        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
+    render->add_option("--caustic-photons", photon.photons.caustic_photons, "photon: paths emitted for the caustic map")
+        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
+    int gather_samples = photon.gather.theta_strata * photon.gather.phi_strata;
+    render->add_option("--gather-samples", gather_samples,
+                       "photon: final-gather rays per record, as M x 2M strata (rounded)")
+        ->capture_default_str()->check(CLI::Range(8, 1 << 16));
+    render->add_option("--cache-accuracy", photon.cache.accuracy, "photon: Ward's a; smaller = more records")
+        ->capture_default_str()->check(CLI::Range(0.01f, 2.0f));
+    render->add_option("--cache-spacing", photon.cache.min_spacing_px, "photon: smallest record spacing in pixels")
+        ->capture_default_str()->check(CLI::Range(0.5f, 1000.0f));
+    render->add_option("--cache-max-spacing", photon.cache.max_spacing_px, "photon: largest record spacing in pixels")
+        ->capture_default_str()->check(CLI::Range(1.0f, 10000.0f));
+    render->add_option("--direct-samples", photon.direct_samples, "photon: shadow rays per diffuse hit and camera ray")
+        ->capture_default_str()->check(CLI::Range(1, 4096));
+    render->add_flag("!--jittered-gather", photon.gather.fixed_directions,
+                     "photon: new gather directions per record instead of one fixed set");
     render->add_option("--max-depth", settings.path.max_depth, "Maximum path length in bounces")
         ->capture_default_str()->check(CLI::Range(0, 10000));
     render->add_flag("!--no-progress", settings.show_progress, "No progress output");
@@ -66,6 +89,11 @@ int main(int argc, char** argv) {
         }
         if (!frames.empty()) settings.frames = parse_frame_range(frames);
         if (!size.empty()) parse_size(size, settings);
+        if (spp) settings.path.samples_per_pixel = settings.photon.samples_per_pixel = *spp;
+        settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(gather_samples / 2.0))));
+        settings.photon.gather.phi_strata = 2 * settings.photon.gather.theta_strata;
+        if (settings.photon.cache.max_spacing_px < settings.photon.cache.min_spacing_px)
+            throw InputError("--cache-max-spacing", "must not be smaller than --cache-spacing");
         std::unique_ptr<tbb::global_control> thread_limit;
         if (threads > 0)
             thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));

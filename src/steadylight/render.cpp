@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "steadylight/base/error.h"
+#include "steadylight/output/atomic_file.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/progress.h"
@@ -35,9 +36,35 @@ FrameRange frames_to_render(const RenderSettings& settings, const Scene& scene) 
     return range;
 }
 
-void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const Image& image) {
-    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"), image);
-    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), image);
+/// A finished frame: the image, its layers for the EXR, and statistics when the method has any.
+struct RenderedFrame {
+    Image beauty;
+    std::vector<std::pair<std::string, Image>> layers;
+    std::optional<FrameStats> stats;
+};
+
+RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& context, Progress& progress) {
+    if (settings.method == "path")
+        return {render_path_traced(context, settings.path, [&](int done, int total) { progress.update_frame(done, total); }),
+                {}, std::nullopt};
+    PhotonFrame frame = render_photon_mapped(context, settings.photon);
+    return {frame.beauty,
+            {{"direct", std::move(frame.direct)},
+             {"indirect", std::move(frame.indirect)},
+             {"caustic", std::move(frame.caustic)},
+             {"specular", std::move(frame.specular)},
+             {"records", std::move(frame.records)}},
+            frame.stats};
+}
+
+void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
+    std::vector<ExrLayer> layers{{"", &rendered.beauty}};
+    for (const auto& [name, image] : rendered.layers) layers.push_back({name, &image});
+    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"), layers);
+    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty);
+    if (rendered.stats)
+        write_text_file(frame_file_name(settings.out_dir, scene.name(), frame, "stats.json"),
+                        nlohmann::json(*rendered.stats).dump(2) + "\n");
 }
 
 }  // namespace
@@ -57,8 +84,8 @@ FrameRange parse_frame_range(const std::string& text) {
 
 RenderSummary render_animation(const RenderSettings& settings) {
     const Clock::time_point start = Clock::now();
-    if (settings.integrator != "path")
-        throw InputError("--integrator", "unknown integrator \"" + settings.integrator + "\" (path)");
+    if (settings.method != "path" && settings.method != "photon")
+        throw InputError("--method", "unknown method \"" + settings.method + "\" (path, photon)");
     const Scene scene = load_scene(settings);
     const FrameRange range = frames_to_render(settings, scene);
     std::filesystem::create_directories(settings.out_dir);
@@ -74,12 +101,12 @@ RenderSummary render_animation(const RenderSettings& settings) {
         tracer.set_frame(state);
         const LightSet lights(scene, state);
         const FrameContext context{scene, state, tracer, lights, bsdfs};
-        const Image image = render_path_traced(context, settings.path,
-                                               [&](int done, int total) { progress.update_frame(done, total); });
-        write_frame(settings, scene, frame, image);
+        const RenderedFrame rendered = render_frame(settings, context, progress);
+        write_frame(settings, scene, frame, rendered);
         ++summary.frames_written;
-        progress.finish_frame(fmt::format("frame {:4d}  {:7.2f} s  {}", frame, seconds_since(frame_start),
-                                          frame_file_name(settings.out_dir, scene.name(), frame, "exr")));
+        progress.finish_frame(fmt::format("frame {:4d}  {:7.2f} s  {}{}", frame, seconds_since(frame_start),
+                                          frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
+                                          rendered.stats ? "\n  " + summarize(*rendered.stats) : ""));
     }
     summary.seconds = seconds_since(start);
     return summary;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "steadylight/integrators/path_tracer.h"
+#include "steadylight/integrators/photon_mapping.h"
 
 namespace steadylight {
 
@@ -22,8 +23,9 @@ struct RenderSettings {
     std::string out_dir = "out";
     std::optional<FrameRange> frames;  // default: every frame of the scene
     std::optional<int> width, height;  // default: the scene camera's resolution
-    std::string integrator = "path";
+    std::string method = "path";  // "path" (ground truth) or "photon" (photon mapping, paper's reference)
     PathTracerSettings path;
+    PhotonMappingSettings photon;
     bool show_progress = true;
 };
 
@@ -32,7 +34,8 @@ struct RenderSummary {
     double seconds = 0;
 };
 
-/// Renders the frames and writes `<out>/<scene>_<frame:04>.exr` and `.png` for each.
+/// Renders the frames and writes `<out>/<scene>_<frame:04>.exr` (with AOV layers) and `.png`
+/// for each, and for photon mapping `<scene>_<frame:04>.stats.json`.
 RenderSummary render_animation(const RenderSettings& settings);
 
 /// A human-readable description of a scene: objects, triangles, lights, frames and the

@@ -9,27 +9,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <functional>
 #include <stdexcept>
 #include <vector>
 
 #include "steadylight/base/error.h"
+#include "steadylight/output/atomic_file.h"
 
 namespace steadylight {
 namespace {
 
-/// Runs `write(temporary)` and renames the result onto `path`; removes the temporary on failure.
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-    const std::string temporary = path + ".partial";
-    try {
-        write(temporary);
-        std::filesystem::rename(temporary, path);
-    } catch (const std::exception& e) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error("cannot write " + path + ": " + e.what());
-    }
+std::string channel_name(const std::string& layer, int c) {
+    const std::string rgb[3] = {"R", "G", "B"};
+    return layer.empty() ? rgb[c] : layer + "." + rgb[c];
 }
 
 }  // namespace
@@ -39,29 +30,34 @@ float linear_to_srgb(float v) {
     return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
 }
 
-void write_exr(const std::string& path, const Image& image) {
-    write_atomically(path, [&](const std::string& file) {
-        std::vector<half> channels[3];
-        for (auto& c : channels) c.resize(image.pixels.size());
-        for (size_t i = 0; i < image.pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c) channels[c][i] = half(image.pixels[i][c]);
-        Imf::Header header(image.width, image.height);
+void write_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
+    write_file_atomically(path, [&](const std::string& file) {
+        const Image& first = *layers.front().image;
+        Imf::Header header(first.width, first.height);
         header.compression() = Imf::ZIP_COMPRESSION;
         Imf::FrameBuffer buffer;
-        const char* names[3] = {"R", "G", "B"};
-        for (int c = 0; c < 3; ++c) {
-            header.channels().insert(names[c], Imf::Channel(Imf::HALF));
-            buffer.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(channels[c].data()),
-                                               sizeof(half), sizeof(half) * size_t(image.width)));
+        std::vector<std::vector<half>> channels;
+        channels.reserve(layers.size() * 3);
+        for (const ExrLayer& layer : layers) {
+            for (int c = 0; c < 3; ++c) {
+                std::vector<half>& channel = channels.emplace_back(layer.image->pixels.size());
+                for (size_t i = 0; i < channel.size(); ++i) channel[i] = half(layer.image->pixels[i][c]);
+                const std::string name = channel_name(layer.name, c);
+                header.channels().insert(name, Imf::Channel(Imf::HALF));
+                buffer.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(channel.data()), sizeof(half),
+                                               sizeof(half) * size_t(first.width)));
+            }
         }
         Imf::OutputFile out(file.c_str(), header);
         out.setFrameBuffer(buffer);
-        out.writePixels(image.height);
+        out.writePixels(first.height);
     });
 }
 
+void write_exr(const std::string& path, const Image& image) { write_exr(path, {{"", &image}}); }
+
 void write_png(const std::string& path, const Image& image) {
-    write_atomically(path, [&](const std::string& file) {
+    write_file_atomically(path, [&](const std::string& file) {
         std::vector<unsigned char> bytes(image.pixels.size() * 3);
         for (size_t i = 0; i < image.pixels.size(); ++i)
             for (int c = 0; c < 3; ++c)
@@ -71,19 +67,20 @@ void write_png(const std::string& path, const Image& image) {
     });
 }
 
-Image read_exr(const std::string& path) {
+Image read_exr(const std::string& path, const std::string& layer) {
     try {
         Imf::InputFile in(path.c_str());
         const Imath::Box2i window = in.header().dataWindow();
         const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
         std::vector<float> channels[3];
         Imf::FrameBuffer buffer;
-        const char* names[3] = {"R", "G", "B"};
         for (int c = 0; c < 3; ++c) {
+            if (!in.header().channels().findChannel(channel_name(layer, c)))
+                throw std::runtime_error("no channel " + channel_name(layer, c));
             channels[c].resize(size_t(width) * size_t(height));
             char* origin = reinterpret_cast<char*>(channels[c].data()) -
                            (size_t(window.min.x) + size_t(window.min.y) * size_t(width)) * sizeof(float);
-            buffer.insert(names[c], Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(width)));
+            buffer.insert(channel_name(layer, c), Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(width)));
         }
         in.setFrameBuffer(buffer);
         in.readPixels(window.min.y, window.max.y);

@@ -4,17 +4,27 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "steadylight/base/image.h"
 
 namespace steadylight {
 
+/// One named image in a multi-layer EXR: channels `<name>.R`, `<name>.G`, `<name>.B`, or plain
+/// R, G, B for the empty name (the beauty image, which every viewer shows first).
+struct ExrLayer {
+    std::string name;
+    const Image* image;
+};
+
+/// Linear RGB as a half-float EXR with the given layers (all of the same size).
+void write_exr(const std::string& path, const std::vector<ExrLayer>& layers);
 /// Linear RGB radiance as a half-float EXR with channels R, G, B.
 void write_exr(const std::string& path, const Image& image);
 /// The image clamped to [0, 1] and encoded with the sRGB transfer curve.
 void write_png(const std::string& path, const Image& image);
-/// Reads the R, G, B channels of an EXR (for tests and tools).
-Image read_exr(const std::string& path);
+/// Reads the R, G, B channels of one layer of an EXR (for tests and tools).
+Image read_exr(const std::string& path, const std::string& layer = "");
 
 /// The sRGB transfer curve (IEC 61966-2-1) for a linear value in [0, 1].
 float linear_to_srgb(float v);

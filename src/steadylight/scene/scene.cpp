@@ -11,6 +11,14 @@ Ray Camera::generate_ray(float x, float y) const {
     return {world_from_camera.point({}), normalize(world_from_camera.vector(d_camera)), infinity};
 }
 
+std::optional<Vec2> Camera::project(Vec3 p) const {
+    const Vec3 q = world_from_camera.inverse().point(p);
+    if (!(q.z < 0)) return std::nullopt;
+    const float aspect = float(width) / float(height);
+    const float sx = q.x / (-q.z * tan_half_fov_y * aspect), sy = q.y / (-q.z * tan_half_fov_y);
+    return Vec2{(sx + 1) / 2 * float(width), (1 - sy) / 2 * float(height)};
+}
+
 Scene::Scene(SceneDesc desc) : m_desc(std::move(desc)) {
     validate(m_desc);
     for (int i = 0; i < int(m_desc.objects.size()); ++i)

@@ -3,6 +3,7 @@
 // that frame. It knows nothing of Embree; trace/ builds acceleration structures from it.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "steadylight/base/ray.h"
@@ -19,6 +20,10 @@ struct Camera {
 
     /// The primary ray through film position (x, y) in pixels, e.g. (10.5, 3.5) is a centre.
     Ray generate_ray(float x, float y) const;
+    /// The film position (in pixels) where world point `p` appears, if it is in front of the camera.
+    std::optional<Vec2> project(Vec3 p) const;
+    /// The world-space width of one pixel at distance `distance` from the camera.
+    float pixel_footprint(float distance) const { return distance * 2 * tan_half_fov_y / float(height); }
 };
 
 /// Where everything is at one frame.

@@ -40,11 +40,26 @@ public:
         return area_to_solid_angle(1 / m_area, ref, p, n);
     }
 
-    float power() const override {
-        return luminance(m_object.emission) * pi * m_area * (m_object.two_sided_emission ? 2.0f : 1.0f);
+    float power() const override { return luminance(m_object.emission) * pi * m_area * sides(); }
+
+    std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const override {
+        EmissionSample s;
+        sample_point(u_position, s.p, s.n);
+        // A two-sided emitter picks its side with the first direction number, then reuses it.
+        if (m_object.two_sided_emission) {
+            const bool back = u_direction.x < 0.5f;
+            u_direction.x = back ? 2 * u_direction.x : 2 * u_direction.x - 1;
+            if (back) s.n = -s.n;
+        }
+        // Cosine-weighted directions: Le cos / (pdf_area pdf_direction) = Le pi A (per side).
+        s.d = Frame::from_normal(s.n).to_world(sample_cosine_hemisphere(u_direction));
+        s.power = m_object.emission * (pi * m_area * sides());
+        return s;
     }
 
 private:
+    float sides() const { return m_object.two_sided_emission ? 2.0f : 1.0f; }
+
     void sample_point(Vec2 u, Vec3& p, Vec3& n) const {
         if (m_triangles.empty()) {
             n = sample_uniform_sphere(u);

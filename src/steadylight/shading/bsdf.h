@@ -34,6 +34,10 @@ public:
     virtual std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, float u_lobe, TransportMode mode) const = 0;
     /// True when every lobe is a delta: no light sampling is possible.
     virtual bool is_delta() const { return false; }
+    /// True for ideal diffuse reflection: the surfaces where photons are stored and irradiance
+    /// is cached; their reflected radiance is diffuse_reflectance() / pi times the irradiance.
+    virtual bool is_diffuse() const { return false; }
+    virtual Rgb diffuse_reflectance() const { return {}; }
 };
 
 std::unique_ptr<Bsdf> make_lambert(Rgb reflectance);

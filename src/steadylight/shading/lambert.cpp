@@ -11,6 +11,9 @@ class Lambert final : public Bsdf {
 public:
     explicit Lambert(Rgb reflectance) : m_reflectance(reflectance) {}
 
+    bool is_diffuse() const override { return true; }
+    Rgb diffuse_reflectance() const override { return m_reflectance; }
+
     Rgb eval(Vec3 wo, Vec3 wi) const override {
         return wo.z * wi.z > 0 ? m_reflectance * inv_pi : Rgb{};
     }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <utility>
 #include <optional>
 #include <vector>
 
@@ -22,6 +23,15 @@ struct LightSample {
     bool is_delta = false;
 };
 
+/// A photon's start: where it leaves the light, which way, and its power up to the 1/N that
+/// spreads the light's power over the N photons emitted.
+struct EmissionSample {
+    Vec3 p;
+    Vec3 n;         // the emitting surface's normal on the side the photon leaves (zero for point lights)
+    Vec3 d;         // unit direction
+    Rgb power;      // Le cos / (pdf_position pdf_direction), divided by the light's selection probability
+};
+
 class Light {
 public:
     virtual ~Light() = default;
@@ -31,6 +41,8 @@ public:
     virtual float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const = 0;
     /// Total emitted power (luminance of W), used to choose lights.
     virtual float power() const = 0;
+    /// Samples a photon start; pdf-weighted as EmissionSample says (without light selection).
+    virtual std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const = 0;
 };
 
 /// Area light over the world-space surface of emissive object `object` at this frame.
@@ -44,6 +56,8 @@ public:
     bool empty() const { return m_lights.empty(); }
     /// Picks a light with `u_select` and samples it; the pdf includes the choice.
     std::optional<LightSample> sample(Vec3 ref, float u_select, Vec2 u) const;
+    /// Picks a light in proportion to power with `u_select` and samples a photon start from it.
+    std::optional<EmissionSample> sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const;
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
     float pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const;
 
@@ -51,6 +65,9 @@ private:
     std::vector<std::unique_ptr<Light>> m_lights;
     std::vector<float> m_cdf;                // over m_lights, by power
     std::vector<int> m_light_of_object;      // object -> index in m_lights, or -1
+
+    /// The light `u_select` picks and the probability of picking it.
+    std::pair<size_t, float> choose(float u_select) const;
 };
 
 /// Converts an area-measure pdf at `p` (normal `n`) into solid angle as seen from `ref`.

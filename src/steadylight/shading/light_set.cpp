@@ -31,11 +31,24 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame)
     if (!m_cdf.empty()) m_cdf.back() = 1;
 }
 
-std::optional<LightSample> LightSet::sample(Vec3 ref, float u_select, Vec2 u) const {
-    if (m_lights.empty()) return std::nullopt;
+std::pair<size_t, float> LightSet::choose(float u_select) const {
     const size_t i = std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u_select) - m_cdf.begin()),
                               m_lights.size() - 1);
-    const float p_select = m_cdf[i] - (i ? m_cdf[i - 1] : 0);
+    return {i, m_cdf[i] - (i ? m_cdf[i - 1] : 0)};
+}
+
+std::optional<EmissionSample> LightSet::sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const {
+    if (m_lights.empty()) return std::nullopt;
+    const auto [i, p_select] = choose(u_select);
+    if (p_select <= 0) return std::nullopt;
+    std::optional<EmissionSample> s = m_lights[i]->sample_emission(u_position, u_direction);
+    if (s) s->power = s->power / p_select;
+    return s;
+}
+
+std::optional<LightSample> LightSet::sample(Vec3 ref, float u_select, Vec2 u) const {
+    if (m_lights.empty()) return std::nullopt;
+    const auto [i, p_select] = choose(u_select);
     if (p_select <= 0) return std::nullopt;
     std::optional<LightSample> s = m_lights[i]->sample_li(ref, u);
     if (!s || !(s->pdf > 0)) return std::nullopt;

@@ -1,6 +1,9 @@
 // Point and spot lights: radiant intensity from one point, a spot light limited to a cone with
 // a smooth falloff at its edge. They cannot be hit by rays, only sampled.
+#include <algorithm>
 #include <cmath>
+
+#include "steadylight/base/sampling.h"
 
 #include "steadylight/shading/light.h"
 
@@ -35,6 +38,24 @@ public:
         if (m_desc.type == PointLightType::point) return 4 * pi * lum;
         // The cone's solid angle up to the middle of the falloff band.
         return 2 * pi * (1 - 0.5f * (m_cos_cone + m_cos_falloff_start)) * lum;
+    }
+
+    std::optional<EmissionSample> sample_emission(Vec2, Vec2 u_direction) const override {
+        EmissionSample s;
+        s.p = m_desc.position;
+        if (m_desc.type == PointLightType::point) {
+            s.d = sample_uniform_sphere(u_direction);
+            s.power = m_desc.intensity * (4 * pi);
+            return s;
+        }
+        // Uniform directions in the spot's cone, weighted by its falloff.
+        const float cos_theta = 1 - u_direction.x * (1 - m_cos_cone);
+        const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
+        const float phi = 2 * pi * u_direction.y;
+        s.d = Frame::from_normal(m_desc.direction)
+                  .to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
+        s.power = m_desc.intensity * (falloff(s.d) * 2 * pi * (1 - m_cos_cone));
+        return s;
     }
 
 private:

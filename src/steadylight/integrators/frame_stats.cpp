@@ -1,0 +1,34 @@
+#include "steadylight/integrators/frame_stats.h"
+
+#include <fmt/format.h>
+
+namespace steadylight {
+
+void to_json(nlohmann::json& json, const FrameStats& s) {
+    json = {{"method", s.method},
+            {"frame", s.frame},
+            {"photons",
+             {{"global_emitted", s.global_photons_emitted},
+              {"global_stored", s.global_photons_stored},
+              {"caustic_emitted", s.caustic_photons_emitted},
+              {"caustic_stored", s.caustic_photons_stored},
+              {"irradiance_precomputed", s.irradiance_photons}}},
+            {"irradiance_records", s.irradiance_records},
+            {"fallback_gathers", s.fallback_gathers},
+            {"gather_rays", s.gather_rays},
+            {"seconds",
+             {{"photon_tracing", s.photon_tracing_s},
+              {"cache", s.cache_s},
+              {"direct", s.direct_s},
+              {"caustics", s.caustics_s},
+              {"total", s.total_s}}}};
+}
+
+std::string summarize(const FrameStats& s) {
+    return fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M | photons {:.2f} s, cache {:.2f} s, "
+                       "shading {:.2f} s (caustics {:.2f} s cpu)",
+                       s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
+                       double(s.gather_rays) / 1e6, s.photon_tracing_s, s.cache_s, s.direct_s, s.caustics_s);
+}
+
+}  // namespace steadylight

@@ -1,0 +1,44 @@
+// Statistics of one rendered frame: counts and wall time per phase, printed after each frame
+// and written beside it as JSON (`<scene>_<frame:04>.stats.json`).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <string>
+
+namespace steadylight {
+
+struct FrameStats {
+    std::string method;
+    int frame = 0;
+    long global_photons_emitted = 0;
+    long global_photons_stored = 0;
+    long caustic_photons_emitted = 0;
+    long caustic_photons_stored = 0;
+    long irradiance_photons = 0;
+    long irradiance_records = 0;      // computed for this frame's cache
+    long fallback_gathers = 0;        // gathers at points the cache did not cover
+    long gather_rays = 0;
+    double photon_tracing_s = 0;      // tracing both maps and precomputing irradiance
+    double cache_s = 0;               // building the irradiance cache (final gathering)
+    double direct_s = 0;              // shading pass: direct light, cache look-ups, specular
+    double caustics_s = 0;            // caustic estimates (inside the shading pass, summed over threads)
+    double total_s = 0;
+};
+
+void to_json(nlohmann::json& json, const FrameStats& stats);
+
+/// One line for the console: the phases and counts of the frame.
+std::string summarize(const FrameStats& stats);
+
+/// Measures wall time of a phase: `Stopwatch w; ...; seconds = w.elapsed_s();`
+class Stopwatch {
+public:
+    double elapsed_s() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
+
+private:
+    std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
+};
+
+}  // namespace steadylight

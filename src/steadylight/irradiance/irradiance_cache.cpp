@@ -1,0 +1,216 @@
+// The irradiance cache: records in insertion order plus a spatial index over their spheres of
+// validity, Ward's weighted interpolation with gradients, and neighbour clamping. The index is a
+// hierarchical hash grid rather than an octree: it needs no scene bounds, and each look-up is one
+// hash probe per level in use, in a fixed order, so results are deterministic.
+#include "steadylight/irradiance/irradiance_cache.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include "steadylight/base/check.h"
+#include "steadylight/base/ray.h"  // infinity
+#include "steadylight/base/rng.h"
+
+namespace steadylight {
+namespace {
+
+// Widens indexed spheres slightly so float rounding in the weight test never finds a record
+// outside the sphere it was indexed with.
+constexpr float index_padding = 1.0001f;
+
+// Ward's test against records "in front of" p (Ward, Rubinstein & Clear 1988): tolerance
+// as a fraction of the record's radius, so flat and gently curved surfaces never trip it.
+constexpr float in_front_tolerance = 0.05f;
+
+constexpr float sqrt_half = 0.70710678f;
+
+/// A hierarchical hash grid over spheres. A sphere of radius r lives at the level whose cells are
+/// the smallest power of two >= 2r, in every cell its bounding box overlaps (at most 8), so at each
+/// level in use the one cell containing a point lists every sphere that may contain that point.
+class SphereGrid {
+public:
+    void insert(uint32_t id, Vec3 center, float radius) {
+        int level = 0;
+        std::frexp(2 * radius, &level);  // 2r = m 2^level, m in [0.5, 1): cells of 2^level >= 2r
+        level = std::max(level, min_level);
+        const auto lo = cell_of(center - Vec3{radius, radius, radius}, level);
+        const auto hi = cell_of(center + Vec3{radius, radius, radius}, level);
+        for (int64_t z = lo[2]; z <= hi[2]; ++z)
+            for (int64_t y = lo[1]; y <= hi[1]; ++y)
+                for (int64_t x = lo[0]; x <= hi[0]; ++x) m_cells[{level, x, y, z}].push_back(id);
+        if (!std::binary_search(m_levels.begin(), m_levels.end(), level))
+            m_levels.insert(std::upper_bound(m_levels.begin(), m_levels.end(), level), level);
+    }
+
+    /// Calls `f(id)` once for every sphere that may contain `p` (and perhaps a few more).
+    template <class F>
+    void for_each_candidate(Vec3 p, F&& f) const {
+        for (const int level : m_levels) {
+            const auto c = cell_of(p, level);
+            const auto it = m_cells.find({level, c[0], c[1], c[2]});
+            if (it == m_cells.end()) continue;
+            for (const uint32_t id : it->second) f(id);
+        }
+    }
+
+    void clear() {
+        m_cells.clear();
+        m_levels.clear();
+    }
+
+private:
+    // Cells no smaller than 2^-32 world units keep cell coordinates well inside int64.
+    static constexpr int min_level = -32;
+
+    struct Key {
+        int level;
+        int64_t x, y, z;
+        bool operator==(const Key&) const = default;
+    };
+    struct KeyHash {
+        size_t operator()(const Key& k) const {
+            return size_t(hash_ids(uint64_t(int64_t(k.level)), uint64_t(k.x), uint64_t(k.y), uint64_t(k.z)));
+        }
+    };
+
+    static std::array<int64_t, 3> cell_of(Vec3 p, int level) {
+        const float inverse_size = std::ldexp(1.0f, -level);  // a power of two: exact, monotonic
+        return {int64_t(std::floor(p.x * inverse_size)), int64_t(std::floor(p.y * inverse_size)),
+                int64_t(std::floor(p.z * inverse_size))};
+    }
+
+    std::unordered_map<Key, std::vector<uint32_t>, KeyHash> m_cells;
+    std::vector<int> m_levels;  // sorted
+};
+
+/// Ward's weight of `record` at (p, n): 1 / (|p - p_i| / R_i + sqrt(1 - n . n_i)), infinite at the
+/// record itself; 0 when the record must not be used there (normals apart, or record in front).
+float ward_weight(const IrradianceRecord& record, Vec3 p, Vec3 n) {
+    const float cos_normals = dot(n, record.n);
+    if (cos_normals <= 0) return 0;
+    const Vec3 offset = p - record.p;
+    if (dot(offset, (n + record.n) * 0.5f) < -in_front_tolerance * record.radius) return 0;
+    // sqrt(1 - n . n_i) = |n - n_i| / sqrt(2) for unit normals; the difference stays exact as n_i
+    // approaches n, where 1 - n . n_i rounds to about 1e-7 and its root to about 3e-4.
+    const float error = length(offset) / record.radius + length(n - record.n) * sqrt_half;
+    return error > 0 ? 1 / error : infinity;
+}
+
+/// The record's irradiance extrapolated to (p, n) by its gradients, clamped at 0 per channel.
+/// The record's irradiance carried to (p, n) by its gradients, limited to [0, 2 E]: near
+/// contact geometry translational gradients grow like 1 / (nearest distance), and a radius that
+/// was clamped up to the minimum spacing lets a record reach well past where its gradient holds
+/// (gradient limiting, cf. Krivanek et al. 2006).
+Rgb extrapolate(const IrradianceRecord& record, Vec3 p, Vec3 n) {
+    const Vec3 turn = cross(record.n, n), move = p - record.p;
+    const auto channel = [&](int c) {
+        const float change = dot(turn, record.rotational_gradient[c]) + dot(move, record.translational_gradient[c]);
+        return record.E[c] + std::clamp(change, -record.E[c], record.E[c]);
+    };
+    return {channel(0), channel(1), channel(2)};
+}
+
+struct WeightedRecord {
+    uint32_t id;
+    float weight;
+};
+
+/// The records whose weight at (p, n) exceeds 1 / accuracy, in insertion order.
+std::vector<WeightedRecord> usable_records(const SphereGrid& index, const std::vector<IrradianceRecord>& records,
+                                           float accuracy, Vec3 p, Vec3 n) {
+    std::vector<WeightedRecord> used;
+    index.for_each_candidate(p, [&](uint32_t id) {
+        const float weight = ward_weight(records[id], p, n);
+        if (weight > 1 / accuracy) used.push_back({id, weight});
+    });
+    std::sort(used.begin(), used.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+    return used;
+}
+
+}  // namespace
+
+struct IrradianceCache::Index : SphereGrid {};
+
+IrradianceCache::IrradianceCache(CacheSettings settings)
+    : m_settings(settings), m_index(std::make_unique<Index>()) {
+    SL_CHECK(settings.accuracy > 0);
+}
+IrradianceCache::~IrradianceCache() = default;
+IrradianceCache::IrradianceCache(IrradianceCache&&) noexcept = default;
+IrradianceCache& IrradianceCache::operator=(IrradianceCache&&) noexcept = default;
+
+void IrradianceCache::insert(const IrradianceRecord& record) {
+    SL_CHECK(record.radius > 0 && std::isfinite(record.radius));
+    // w_i > 1 / a needs |p - p_i| < a R_i: that is the sphere to index.
+    m_index->insert(uint32_t(m_records.size()), record.p, m_settings.accuracy * record.radius * index_padding);
+    m_records.push_back(record);
+}
+
+std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n) const {
+    const std::vector<WeightedRecord> used = usable_records(*m_index, m_records, m_settings.accuracy, p, n);
+    if (used.empty()) return std::nullopt;
+
+    // Scale weights by the largest, so that at a record's own position (infinite weight) only
+    // that record counts and its E comes back exactly.
+    float max_weight = 0;
+    for (const WeightedRecord& r : used) max_weight = std::max(max_weight, r.weight);
+    Rgb sum;
+    float weight_sum = 0;
+    for (const WeightedRecord& r : used) {
+        const float weight = max_weight == infinity ? (r.weight == infinity ? 1.0f : 0.0f) : r.weight / max_weight;
+        if (weight == 0) continue;
+        sum += extrapolate(m_records[r.id], p, n) * weight;
+        weight_sum += weight;
+    }
+    return sum / weight_sum;
+}
+
+bool IrradianceCache::covers(Vec3 p, Vec3 n) const {
+    bool found = false;
+    m_index->for_each_candidate(p, [&](uint32_t id) {
+        found = found || ward_weight(m_records[id], p, n) > 1 / m_settings.accuracy;
+    });
+    return found;
+}
+
+void IrradianceCache::clamp_radii_to_neighbours() {
+    // Index the spheres of radius R_i: record j can lower R_i only if R_j + |p_i - p_j| < R_i,
+    // which needs p_j inside that sphere.
+    SphereGrid spheres;
+    for (size_t i = 0; i < m_records.size(); ++i)
+        spheres.insert(uint32_t(i), m_records[i].p, m_records[i].radius * index_padding);
+
+    // Lower each radius against the old radii of its neighbours. One such pass reaches the fixed
+    // point (R_i = min_j R_j + |p_i - p_j| already satisfies the triangle inequality), and a min
+    // does not depend on the order in which neighbours are visited.
+    std::vector<float> radius(m_records.size());
+    for (size_t i = 0; i < m_records.size(); ++i) radius[i] = m_records[i].radius;
+    for (size_t j = 0; j < m_records.size(); ++j) {
+        spheres.for_each_candidate(m_records[j].p, [&](uint32_t i) {
+            radius[i] = std::min(radius[i], m_records[j].radius + length(m_records[i].p - m_records[j].p));
+        });
+    }
+
+    // Store the new radii and re-index the records' (now smaller) spheres of validity.
+    m_index->clear();
+    for (size_t i = 0; i < m_records.size(); ++i) {
+        m_records[i].radius = radius[i];
+        m_index->insert(uint32_t(i), m_records[i].p, m_settings.accuracy * radius[i] * index_padding);
+    }
+}
+
+const std::vector<IrradianceRecord>& IrradianceCache::records() const { return m_records; }
+const CacheSettings& IrradianceCache::settings() const { return m_settings; }
+
+float clamp_radius(float harmonic_mean_distance, float pixel_footprint, const CacheSettings& settings) {
+    // A record reaches a * R (Ward's weight exceeds 1/a there), so the spacing limits, which are
+    // about how far records reach in pixels, bound R at spacing / a.
+    const float min_radius = settings.min_spacing_px * pixel_footprint / settings.accuracy;
+    const float max_radius = settings.max_spacing_px * pixel_footprint / settings.accuracy;
+    return std::min(std::max(harmonic_mean_distance, min_radius), max_radius);
+}
+
+}  // namespace steadylight

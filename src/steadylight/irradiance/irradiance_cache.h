@@ -1,0 +1,59 @@
+// The irradiance cache (Ward, Rubinstein & Clear 1988): records of gathered irradiance kept in a
+// spatial index (a hierarchical hash grid over the records' spheres of validity) and interpolated with Ward's
+// weights w_i = 1 / (|p - p_i| / R_i + sqrt(1 - n . n_i)) plus the gradient terms (Ward &
+// Heckbert 1992). Radii are clamped against neighbours (Krivanek et al. 2006, "Making radiance
+// and irradiance caching practical"). Reads are thread-safe; inserts are not (the builder inserts
+// between parallel phases, in a fixed order, so results never depend on thread count).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "steadylight/irradiance/irradiance_record.h"
+
+namespace steadylight {
+
+struct CacheSettings {
+    float accuracy = 0.25f;          // Ward's a: a record is used where w_i > 1 / a
+    float min_spacing_px = 2.0f;     // a record reaches (a * R) at least this many pixels...
+    float max_spacing_px = 32.0f;    // ...and at most this many
+};
+
+class IrradianceCache {
+public:
+    explicit IrradianceCache(CacheSettings settings = {});
+    ~IrradianceCache();
+    IrradianceCache(IrradianceCache&&) noexcept;
+    IrradianceCache& operator=(IrradianceCache&&) noexcept;
+
+    /// Adds a record; its radius must already be clamped (see clamp_radius).
+    void insert(const IrradianceRecord& record);
+
+    /// \brief Irradiance at `p` with unit normal `n`, interpolated from the records whose weight
+    /// exceeds 1 / accuracy, with gradient extrapolation. std::nullopt when no record qualifies.
+    std::optional<Rgb> interpolate(Vec3 p, Vec3 n) const;
+
+    /// True when some record would be used at (p, n): no new gather is needed there.
+    bool covers(Vec3 p, Vec3 n) const;
+
+    /// Neighbour clamping (Krivanek 2006): R_i = min(R_i, R_j + |p_i - p_j|) over records j whose
+    /// spheres overlap i's. Call after a batch of inserts; deterministic for a given record order.
+    void clamp_radii_to_neighbours();
+
+    const std::vector<IrradianceRecord>& records() const;
+    const CacheSettings& settings() const;
+
+private:
+    struct Index;
+    CacheSettings m_settings;
+    std::vector<IrradianceRecord> m_records;
+    std::unique_ptr<Index> m_index;
+};
+
+/// The validity radius from a gather: the harmonic mean distance clamped to
+/// [min_spacing_px, max_spacing_px] / accuracy times `pixel_footprint` (world size of one pixel
+/// at p), so that a record's reach a * R spans that many pixels.
+float clamp_radius(float harmonic_mean_distance, float pixel_footprint, const CacheSettings& settings);
+
+}  // namespace steadylight

@@ -1,0 +1,17 @@
+// Writing files so that they appear whole or not at all: the content goes to `<path>.partial`
+// in the same folder and is renamed onto `path` only when complete.
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace steadylight {
+
+/// Runs `write(temporary_path)` and renames the result onto `path`; on failure removes the
+/// temporary file and throws std::runtime_error naming `path`.
+void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+/// Writes `text` to `path` atomically.
+void write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace steadylight

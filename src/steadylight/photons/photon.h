@@ -1,0 +1,20 @@
+// A stored photon (Jensen 2001, ch. 5): where it landed, the surface side it landed on, where it
+// came from, and the power it carries.
+#pragma once
+
+#include <cstdint>
+
+#include "steadylight/base/color.h"
+#include "steadylight/base/vec.h"
+
+namespace steadylight {
+
+struct Photon {
+    Vec3 p;
+    Vec3 n;        // unit surface normal on the side the photon arrived from
+    Vec3 wi;       // unit direction back towards where it came from
+    Rgb power;     // W per channel; negative for the negative photons of the dynamic map
+    uint16_t bounce = 0;  // surface interactions before this one: 0 = a direct hit from the light
+};
+
+}  // namespace steadylight

@@ -1,0 +1,84 @@
+#include "steadylight/photons/photon_map.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "steadylight/base/halton.h"
+#include "steadylight/base/rng.h"
+
+namespace steadylight {
+namespace {
+
+std::vector<Vec3> random_points(int count, uint64_t seed) {
+    Pcg32 rng(seed);
+    std::vector<Vec3> points;
+    for (int i = 0; i < count; ++i) points.push_back({rng.next_float(), rng.next_float(), rng.next_float()});
+    return points;
+}
+
+TEST(PhotonMap, EmptyMapReturnsNoNeighbours) {
+    const PhotonMap map;
+    std::vector<Neighbour> out{{1, 1}};
+    map.k_nearest({0, 0, 0}, 10, 1, out);
+    EXPECT_TRUE(out.empty());
+    EXPECT_EQ(map.estimate_irradiance({0, 0, 0}, {0, 0, 1}, {}), Rgb{});
+}
+
+TEST(PhotonMap, KNearestMatchesBruteForce) {
+    const std::vector<Vec3> points = random_points(5000, 1);
+    const PointIndex index(points);
+    std::vector<Neighbour> found;
+    for (const Vec3& q : random_points(100, 2)) {
+        index.k_nearest(q, 20, 0.04f, found);
+        std::vector<Neighbour> expected;
+        for (uint32_t i = 0; i < points.size(); ++i)
+            if (length2(points[i] - q) <= 0.04f) expected.push_back({i, length2(points[i] - q)});
+        std::sort(expected.begin(), expected.end(), [](auto a, auto b) { return a.distance2 < b.distance2; });
+        expected.resize(std::min<size_t>(expected.size(), 20));
+        ASSERT_EQ(found.size(), expected.size());
+        for (size_t i = 0; i < found.size(); ++i) EXPECT_EQ(found[i].index, expected[i].index);
+    }
+}
+
+// Photons of total power P spread uniformly over a unit square: irradiance P / 1 m^2, by both
+// the plain and the cone-filtered estimate, and only from the side the photons arrived on.
+TEST(PhotonMap, UniformPhotonsGiveTheirPowerPerArea) {
+    std::vector<Photon> photons;
+    const int count = 40'000;
+    for (int i = 0; i < count; ++i)
+        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {2.0f / count, 0, 0}});
+    const PhotonMap map(std::move(photons), count);
+    const DensitySettings settings{.k = 400, .max_radius = 0.3f};
+    EXPECT_NEAR(map.estimate_irradiance({0.5f, 0, 0.5f}, {0, 1, 0}, settings).r, 2.0f, 0.1f);
+    EXPECT_NEAR(map.estimate_irradiance_cone({0.5f, 0, 0.5f}, {0, 1, 0}, settings).r, 2.0f, 0.15f);
+    EXPECT_EQ(map.estimate_irradiance({0.5f, 0, 0.5f}, {0, -1, 0}, settings).r, 0.0f);
+}
+
+TEST(PhotonMap, IrradiancePhotonLookupRespectsNormals) {
+    std::vector<Photon> photons;
+    for (int i = 0; i < 1000; ++i)
+        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 1e-3f, 1e-3f}});
+    const PhotonMap map(std::move(photons), 1000);
+    const IrradiancePhotons irradiance(map, 2, {.k = 50, .max_radius = 0.5f});
+    EXPECT_EQ(irradiance.size(), 500u);
+    EXPECT_TRUE(irradiance.lookup({0.5f, 0, 0.5f}, {0, 1, 0}, 0.2f).has_value());
+    EXPECT_FALSE(irradiance.lookup({0.5f, 0, 0.5f}, {0, -1, 0}, 0.2f).has_value());
+    EXPECT_FALSE(irradiance.lookup({5, 0, 5}, {0, 1, 0}, 0.2f).has_value());
+}
+
+TEST(Halton, ComponentsAreInUnitIntervalAndEquidistributed) {
+    for (const int d : {0, 1, 7, 63, 127}) {
+        double sum = 0;
+        for (uint64_t i = 0; i < 10'000; ++i) {
+            const float v = halton(d, i);
+            ASSERT_GE(v, 0.0f);
+            ASSERT_LT(v, 1.0f);
+            sum += v;
+        }
+        EXPECT_NEAR(sum / 10'000, 0.5, 0.01) << "dimension " << d;
+    }
+}
+
+}  // namespace
+}  // namespace steadylight

@@ -1,0 +1,29 @@
+// Photon tracing, the first pass of photon mapping (Jensen 2001, ch. 5): photons leave the lights
+// in proportion to their power and bounce through the scene by the BSDFs, with Russian roulette
+// by reflectance so that the power of surviving photons stays constant. Every random decision of
+// photon i comes from point i of the scrambled Halton sequence (base/halton.h), so the photons
+// of a frame depend only on the scene at that frame (paper §4).
+#pragma once
+
+#include "steadylight/integrators/frame_context.h"
+#include "steadylight/photons/photon_map.h"
+
+namespace steadylight {
+
+struct PhotonSettings {
+    long global_photons = 200'000;   // photon paths emitted for the global map
+    long caustic_photons = 200'000;  // photon paths emitted for the caustic map
+    int max_bounces = 16;
+};
+
+struct TracedPhotons {
+    PhotonMap global;   // every diffuse hit, direct ones included (for final gathering)
+    PhotonMap caustic;  // diffuse hits after one or more specular bounces (L S+ D)
+};
+
+/// Traces both kinds of photons in the scene as `context.frame` places it, seeing the objects
+/// that `visibility` allows. Deterministic: the maps are the same for any thread count.
+TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& settings,
+                            Visibility visibility = Visibility::everything);
+
+}  // namespace steadylight
