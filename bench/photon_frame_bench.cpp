@@ -17,18 +17,6 @@ using namespace steadylight;
 
 namespace {
 
-struct Renderer {
-    Scene scene;
-    FrameState state;
-    RayTracer tracer;
-    LightSet lights;
-    std::vector<std::unique_ptr<Bsdf>> bsdfs;
-
-    explicit Renderer(Scene s)
-        : scene(std::move(s)), state(scene.evaluate(0)), tracer(scene, state), lights(scene, state), bsdfs(make_bsdfs(scene)) {}
-    FrameContext context() const { return {scene, state, tracer, lights, bsdfs}; }
-};
-
 /// Relative RMSE of luminance clamped at 1 (display-referred, as the PNG shows it; unclamped,
 /// the light's anti-aliased edge pixels dominate).
 double relative_rmse(const Image& image, const Image& reference) {
@@ -42,11 +30,11 @@ double relative_rmse(const Image& image, const Image& reference) {
     return std::sqrt(sum2 / n) / (sum_ref / n);
 }
 
-Image reference_image(const Renderer& renderer, const std::string& path) {
+Image reference_image(const PreparedFrame& ball, const std::string& path) {
     if (std::filesystem::exists(path)) return read_exr(path);
     std::printf("rendering the reference (path tracer, 2048 spp) into %s ...\n", path.c_str());
     const Stopwatch time;
-    const Image reference = render_path_traced(renderer.context(), {.samples_per_pixel = 2048, .seed = 0x7e7e});
+    const Image reference = render_path_traced(ball.context(), {.samples_per_pixel = 2048, .seed = 0x7e7e});
     std::printf("  %.1f s\n", time.elapsed_s());
     write_exr(path, reference);
     return reference;
@@ -55,11 +43,12 @@ Image reference_image(const Renderer& renderer, const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Renderer renderer(Scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/ball.json")));
-    const Image reference = reference_image(renderer, argc > 1 ? argv[1] : "ball_0000_reference.exr");
+    const Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/ball.json"));
+    const PreparedFrame ball(scene, 0);
+    const Image reference = reference_image(ball, argc > 1 ? argv[1] : "ball_0000_reference.exr");
 
     // The photon method, defaults as the command line has them.
-    const PhotonFrame frame = render_photon_mapped(renderer.context(), PhotonMappingSettings{});
+    const PhotonFrame frame = render_photon_mapped(ball.context(), PhotonMappingSettings{});
     const FrameStats& s = frame.stats;
     const double photon_rmse = relative_rmse(frame.beauty, reference);
     std::printf("\nphoton mapping, BALL frame 0, 320x240, default settings\n");
@@ -76,7 +65,7 @@ int main(int argc, char** argv) {
     double path_time_at_photon_error = -1;
     for (int spp = 4; spp <= 1024; spp *= 2) {
         const Stopwatch time;
-        const Image image = render_path_traced(renderer.context(), {.samples_per_pixel = spp});
+        const Image image = render_path_traced(ball.context(), {.samples_per_pixel = spp});
         const double seconds = time.elapsed_s(), rmse = relative_rmse(image, reference);
         std::printf("%8d %10.3f %10.4f\n", spp, seconds, rmse);
         if (rmse <= photon_rmse) {

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     render->add_option("scene", settings.scene_file, "Scene file (JSON)")->required();
     render->add_option("--frames", frames, "Frame N or inclusive range A-B (default: all)");
     std::optional<int> spp;
-    render->add_option("--spp", spp, "Samples per pixel (default: 64 for path, 4 for photon)")
+    render->add_option("--spp", spp, "Samples per pixel (default: 64 for path, 16 for photon)")
         ->check(CLI::Range(1, 1 << 20));
     render->add_option("--size", size, "Image size WIDTHxHEIGHT (default: the scene's)");
     render->add_option("--threads", threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));

@@ -25,4 +25,18 @@ struct FrameContext {
 /// One BSDF per material of the scene, in material order.
 std::vector<std::unique_ptr<Bsdf>> make_bsdfs(const Scene& scene);
 
+/// A scene placed at one frame with everything a FrameContext refers to, built from scratch:
+/// for rendering single frames (tests, benchmarks). An animation reuses one RayTracer instead.
+struct PreparedFrame {
+    const Scene& scene;
+    FrameState state;
+    RayTracer tracer;
+    LightSet lights;
+    std::vector<std::unique_ptr<Bsdf>> bsdfs;
+
+    PreparedFrame(const Scene& s, int frame)
+        : scene(s), state(s.evaluate(frame)), tracer(s, state), lights(s, state), bsdfs(make_bsdfs(s)) {}
+    FrameContext context() const { return {scene, state, tracer, lights, bsdfs}; }
+};
+
 }  // namespace steadylight

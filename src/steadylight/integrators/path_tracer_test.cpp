@@ -14,11 +14,7 @@ using testing::add_object;
 using testing::make_empty_scene;
 
 Image render(const Scene& scene, int frame, const PathTracerSettings& settings) {
-    const FrameState state = scene.evaluate(frame);
-    const RayTracer tracer(scene, state);
-    const LightSet lights(scene, state);
-    const auto bsdfs = make_bsdfs(scene);
-    return render_path_traced({scene, state, tracer, lights, bsdfs}, settings);
+    return render_path_traced(PreparedFrame(scene, frame).context(), settings);
 }
 
 Rgb mean(const Image& image) {

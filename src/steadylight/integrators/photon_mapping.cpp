@@ -18,6 +18,15 @@ struct Components {
     Rgb sum() const { return direct + indirect + caustic + specular; }
 };
 
+/// Which of a pixel's light samples a camera ray takes: sample k of this ray is number
+/// first + k of `count`, stratified over the pixel (base/sampling.h stratified_2d), so the
+/// shadow rays of all the pixel's camera rays together cover the lights evenly.
+struct LightStrata {
+    uint32_t first = 0;
+    uint32_t count = 0;  // 0: no stratification, independent samples
+    Vec2 shift;
+};
+
 /// Everything the shading pass reads, built by the phases before it.
 struct Shader {
     const FrameContext& context;
@@ -30,8 +39,9 @@ struct Shader {
     std::atomic<long>& gather_rays;
     std::atomic<long>& caustic_ns;  // time in caustic estimates, summed over threads
 
-    Components shade(const Ray& ray, int depth, bool count_emission, Pcg32& rng) const;
-    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, Pcg32& rng) const;
+    Components shade(const Ray& ray, int depth, bool count_emission, const LightStrata& strata, Pcg32& rng) const;
+    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
+                     Pcg32& rng) const;
     Rgb indirect_irradiance(const SurfacePoint& sp, Vec3 n) const;
     GatherHit gather_radiance(Ray ray) const;
 };
@@ -76,8 +86,11 @@ GatherHit Shader::gather_radiance(Ray ray) const {
 
 Rgb Shader::indirect_irradiance(const SurfacePoint& sp, Vec3 n) const {
     if (const std::optional<Rgb> E = cache.interpolate(sp.p, n)) return *E;
-    // Not covered (a point seen through a mirror, or between records after clamping): gather
-    // here without keeping the record, so the cache stays independent of shading order.
+    // Between records after neighbour clamping, or inside a pixel off its centre: let the
+    // records reach twice as far before gathering anew.
+    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n, 2)) return *E;
+    // Not covered (a point seen only through a mirror): gather here without keeping the record,
+    // so the cache stays independent of shading order.
     const GatherResult g = final_gather(sp.p, n, sp.ng, gather_dirs, settings.gather,
                                         [&](const Ray& r) { return gather_radiance(r); });
     ++fallback_gathers;
@@ -85,11 +98,13 @@ Rgb Shader::indirect_irradiance(const SurfacePoint& sp, Vec3 n) const {
     return g.record.E;
 }
 
-Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, Pcg32& rng) const {
+Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+                          const LightStrata& strata, Pcg32& rng) const {
     Rgb sum;
     for (int s = 0; s < settings.direct_samples; ++s) {
         const float u_select = rng.next_float();
-        const std::optional<LightSample> light = context.lights.sample(sp.p, u_select, rng.next_vec2());
+        const Vec2 u = strata.count ? stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift) : rng.next_vec2();
+        const std::optional<LightSample> light = context.lights.sample(sp.p, u_select, u);
         if (!light) continue;
         const Vec3 wi = frame.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
@@ -99,7 +114,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
     return sum / float(settings.direct_samples);
 }
 
-Components Shader::shade(const Ray& ray, int depth, bool count_emission, Pcg32& rng) const {
+Components Shader::shade(const Ray& ray, int depth, bool count_emission, const LightStrata& strata, Pcg32& rng) const {
     Components c;
     const std::optional<Hit> hit = context.tracer.intersect(ray);
     if (!hit) return c;
@@ -114,7 +129,7 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, Pcg32& 
     const Vec3 wo = frame.to_local(-ray.d);
     if (bsdf.is_diffuse()) {
         const Rgb albedo_over_pi = bsdf.diffuse_reflectance() * inv_pi;
-        c.direct += direct_light(sp, frame, bsdf, wo, rng);
+        c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
         c.indirect = albedo_over_pi * indirect_irradiance(sp, sp.ns);
         const Stopwatch caustic_time;
         c.caustic = albedo_over_pi * photons.caustic.estimate_irradiance_cone(sp.p, sp.ng, settings.caustic_estimate);
@@ -123,13 +138,13 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, Pcg32& 
     }
     // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
     // indirect light (emission is not counted twice). Mirrors and glass see emitters directly.
-    if (!bsdf.is_delta()) c.direct += direct_light(sp, frame, bsdf, wo, rng);
+    if (!bsdf.is_delta()) c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
     if (depth >= settings.max_specular_depth) return c;
     const float u_lobe = rng.next_float();
     const std::optional<BsdfSample> bs = bsdf.sample(wo, rng.next_vec2(), u_lobe, TransportMode::radiance);
     if (!bs) return c;
     const Ray next = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
-    c.specular = bs->weight * shade(next, depth + 1, bs->is_delta, rng).sum();
+    c.specular = bs->weight * shade(next, depth + 1, bs->is_delta, LightStrata{}, rng).sum();
     return c;
 }
 
@@ -202,9 +217,11 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
                 Pcg32 rng(hash_ids(uint64_t(context.frame.frame), uint64_t(y) * uint64_t(camera.width) + uint64_t(x), 0x9e01));
                 Components sum;
                 const Vec2 shift = rng.next_vec2();
+                const LightStrata strata{0, uint32_t(n * settings.direct_samples), rng.next_vec2()};
                 for (int s = 0; s < n; ++s) {
                     const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
-                    const Components c = shader.shade(camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y), 0, true, rng);
+                    const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
+                    const Components c = shader.shade(ray, 0, true, {uint32_t(s * settings.direct_samples), strata.count, strata.shift}, rng);
                     if (!is_finite(c.sum())) continue;
                     sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
                 }

@@ -22,8 +22,8 @@ struct PhotonMappingSettings {
     DensitySettings caustic_estimate{.k = 50, .max_radius = 0.2f};
     GatherSettings gather;
     CacheSettings cache;
-    int samples_per_pixel = 4;        // camera rays per pixel
-    int direct_samples = 4;           // shadow rays per diffuse hit and camera ray
+    int samples_per_pixel = 16;       // camera rays per pixel, stratified
+    int direct_samples = 2;           // shadow rays per diffuse hit and camera ray, stratified over the pixel
     int max_specular_depth = 8;       // mirror, glass and glossy bounces followed from the camera
 };
 

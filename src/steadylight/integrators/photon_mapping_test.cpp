@@ -19,11 +19,7 @@ Scene load_scene(const std::string& name, int width, int height) {
 }
 
 PhotonFrame render(const Scene& scene, int frame, const PhotonMappingSettings& settings) {
-    const FrameState state = scene.evaluate(frame);
-    const RayTracer tracer(scene, state);
-    const LightSet lights(scene, state);
-    const auto bsdfs = make_bsdfs(scene);
-    return render_photon_mapped({scene, state, tracer, lights, bsdfs}, settings);
+    return render_photon_mapped(PreparedFrame(scene, frame).context(), settings);
 }
 
 /// Small but representative settings for an 80 x 60 test frame.

@@ -20,6 +20,8 @@ namespace {
 // Widens indexed spheres slightly so float rounding in the weight test never finds a record
 // outside the sphere it was indexed with.
 constexpr float index_padding = 1.0001f;
+/// The index covers records out to this multiple of their reach, for relaxed look-ups.
+constexpr float max_reach_scale = 2.0f;
 
 // Ward's test against records "in front of" p (Ward, Rubinstein & Clear 1988): tolerance
 // as a fraction of the record's radius, so flat and gently curved surfaces never trip it.
@@ -118,10 +120,12 @@ struct WeightedRecord {
     float weight;
 };
 
-/// The records whose weight at (p, n) exceeds 1 / accuracy, in insertion order.
-std::vector<WeightedRecord> usable_records(const SphereGrid& index, const std::vector<IrradianceRecord>& records,
-                                           float accuracy, Vec3 p, Vec3 n) {
-    std::vector<WeightedRecord> used;
+/// The records whose weight at (p, n) exceeds 1 / accuracy, in insertion order. The result lives
+/// in a per-thread buffer, valid until the thread's next call: look-ups allocate nothing.
+const std::vector<WeightedRecord>& usable_records(const SphereGrid& index, const std::vector<IrradianceRecord>& records,
+                                                  float accuracy, Vec3 p, Vec3 n) {
+    thread_local std::vector<WeightedRecord> used;
+    used.clear();
     index.for_each_candidate(p, [&](uint32_t id) {
         const float weight = ward_weight(records[id], p, n);
         if (weight > 1 / accuracy) used.push_back({id, weight});
@@ -145,12 +149,14 @@ IrradianceCache& IrradianceCache::operator=(IrradianceCache&&) noexcept = defaul
 void IrradianceCache::insert(const IrradianceRecord& record) {
     SL_CHECK(record.radius > 0 && std::isfinite(record.radius));
     // w_i > 1 / a needs |p - p_i| < a R_i: that is the sphere to index.
-    m_index->insert(uint32_t(m_records.size()), record.p, m_settings.accuracy * record.radius * index_padding);
+    m_index->insert(uint32_t(m_records.size()), record.p,
+                    max_reach_scale * m_settings.accuracy * record.radius * index_padding);
     m_records.push_back(record);
 }
 
-std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n) const {
-    const std::vector<WeightedRecord> used = usable_records(*m_index, m_records, m_settings.accuracy, p, n);
+std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scale) const {
+    const float accuracy = m_settings.accuracy * std::clamp(reach_scale, 1.0f, max_reach_scale);
+    const std::vector<WeightedRecord>& used = usable_records(*m_index, m_records, accuracy, p, n);
     if (used.empty()) return std::nullopt;
 
     // Scale weights by the largest, so that at a record's own position (infinite weight) only
@@ -198,7 +204,7 @@ void IrradianceCache::clamp_radii_to_neighbours() {
     m_index->clear();
     for (size_t i = 0; i < m_records.size(); ++i) {
         m_records[i].radius = radius[i];
-        m_index->insert(uint32_t(i), m_records[i].p, m_settings.accuracy * radius[i] * index_padding);
+        m_index->insert(uint32_t(i), m_records[i].p, max_reach_scale * m_settings.accuracy * radius[i] * index_padding);
     }
 }
 

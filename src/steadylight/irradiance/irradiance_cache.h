@@ -32,7 +32,9 @@ public:
 
     /// \brief Irradiance at `p` with unit normal `n`, interpolated from the records whose weight
     /// exceeds 1 / accuracy, with gradient extrapolation. std::nullopt when no record qualifies.
-    std::optional<Rgb> interpolate(Vec3 p, Vec3 n) const;
+    /// `reach_scale` in [1, 2] lets records reach further (1 / (accuracy * reach_scale)), for a
+    /// second try before gathering anew.
+    std::optional<Rgb> interpolate(Vec3 p, Vec3 n, float reach_scale = 1) const;
 
     /// True when some record would be used at (p, n): no new gather is needed there.
     bool covers(Vec3 p, Vec3 n) const;

@@ -72,10 +72,15 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
 }
 
 std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) const {
+    // Most look-ups are answered by the single nearest photon; only near creases and thin walls
+    // does its normal disagree, and then the next few are tried.
     thread_local std::vector<Neighbour> neighbours;
-    m_index.k_nearest(p, 8, max_radius * max_radius, neighbours);
-    for (const Neighbour& nb : neighbours)
-        if (dot(m_n[nb.index], n) > 0.5f) return m_E[nb.index];
+    for (const int k : {1, 8}) {
+        m_index.k_nearest(p, k, max_radius * max_radius, neighbours);
+        for (const Neighbour& nb : neighbours)
+            if (dot(m_n[nb.index], n) > 0.5f) return m_E[nb.index];
+        if (int(neighbours.size()) < k) break;  // nothing further within reach
+    }
     return std::nullopt;
 }
 

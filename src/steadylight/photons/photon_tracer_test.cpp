@@ -14,11 +14,7 @@ using testing::make_empty_scene;
 
 /// Traces photons in `scene` at frame 0 with the given settings.
 TracedPhotons trace(const Scene& scene, const PhotonSettings& settings) {
-    const FrameState state = scene.evaluate(0);
-    const RayTracer tracer(scene, state);
-    const LightSet lights(scene, state);
-    const auto bsdfs = make_bsdfs(scene);
-    return trace_photons({scene, state, tracer, lights, bsdfs}, settings);
+    return trace_photons(PreparedFrame(scene, 0).context(), settings);
 }
 
 /// A closed diffuse sphere of albedo a whose inside emits Le: the furnace of path_tracer_test.
