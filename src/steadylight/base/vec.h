@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace steadylight {
 
 constexpr float pi = 3.14159265358979323846f;
@@ -66,8 +68,6 @@ struct Frame {
     Vec3 to_world(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }
 };
 
-inline std::string to_string(Vec3 v) {
-    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
-}
+inline std::string to_string(Vec3 v) { return fmt::format("({}, {}, {})", v.x, v.y, v.z); }
 
 }  // namespace steadylight

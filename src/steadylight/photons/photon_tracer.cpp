@@ -13,7 +13,8 @@ namespace {
 enum class MapKind { global, caustic };
 
 /// The random numbers of one photon path: Halton dimensions while they last, then a stream
-/// hashed from the photon index (deep bounces matter little and are rare).
+/// hashed from the photon index (deep bounces matter little and are rare). Copyable, so that a
+/// negative photon can go on with exactly the numbers the static photon would have used.
 class PhotonSampler {
 public:
     explicit PhotonSampler(uint64_t index) : m_index(index), m_rng(hash_ids(index, 0x9407)) {}
@@ -29,69 +30,129 @@ private:
     Pcg32 m_rng;
 };
 
-/// Follows photon `index` from its light until it is absorbed, storing it where `kind` wants.
-void trace_photon(const FrameContext& context, uint64_t index, float scale, MapKind kind,
-                  const PhotonSettings& settings, Visibility visibility, std::vector<Photon>& out) {
-    PhotonSampler sampler(index);
-    const float u_select = sampler.next();
-    const Vec2 u_position = sampler.next_vec2();
-    const std::optional<EmissionSample> emission = context.lights.sample_emission(u_select, u_position, sampler.next_vec2());
-    if (!emission || is_black(emission->power)) return;
-    Rgb power = emission->power * scale;
-    // Photons from area lights leave the surface; point lights have no surface to leave.
-    Ray ray = length2(emission->n) > 0 ? spawn_ray(emission->p, emission->n, emission->d) : Ray{emission->p, emission->d};
-    bool specular_path = false;  // every bounce so far was specular or glossy
-    for (int bounce = 0; bounce < settings.max_bounces; ++bounce) {
-        const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
-        if (!hit) return;
-        const SurfacePoint sp = make_surface_point(context.scene, context.frame, ray, *hit);
-        const Bsdf& bsdf = context.bsdf_of(sp.object);
-        const Vec3 arrival_n = dot(sp.ng, ray.d) < 0 ? sp.ng : -sp.ng;
+/// Where the photons of one path go.
+struct PhotonOutput {
+    std::vector<Photon>& main;     // the global or the caustic map
+    std::vector<Photon>* dynamic;  // the dynamic map, or nullptr when it is not wanted
+};
 
-        // Store at diffuse surfaces: all hits for the global map, L S+ D ends for the caustic one.
+/// One photon path in flight: its ray, power and history.
+struct PhotonPath {
+    Ray ray;
+    Rgb power;
+    PhotonSampler sampler;
+    int bounce = 0;
+    bool specular_path = false;  // every bounce so far was specular or glossy
+    bool dynamic = false;        // it has hit a dynamic object
+    bool negative = false;       // it re-traces a static path with negated power
+};
+
+class PhotonTracer {
+public:
+    PhotonTracer(const FrameContext& context, const PhotonSettings& settings, MapKind kind, Visibility visibility)
+        : m_context(context), m_settings(settings), m_kind(kind), m_visibility(visibility) {}
+
+    /// Emits photon `index` from the lights and follows it and any negative photon it spawns.
+    void trace(uint64_t index, float scale, PhotonOutput out) const {
+        PhotonSampler sampler(index);
+        const float u_select = sampler.next();
+        const Vec2 u_position = sampler.next_vec2();
+        const std::optional<EmissionSample> e = m_context.lights.sample_emission(u_select, u_position, sampler.next_vec2());
+        if (!e || is_black(e->power)) return;
+        // Photons from area lights leave the surface; point lights have no surface to leave.
+        const Ray ray = length2(e->n) > 0 ? spawn_ray(e->p, e->n, e->d) : Ray{e->p, e->d};
+        follow({ray, e->power * scale, sampler}, out);
+    }
+
+private:
+    void follow(PhotonPath path, PhotonOutput out) const;
+    void store(const PhotonPath& path, const Photon& photon, PhotonOutput out) const;
+
+    const FrameContext& m_context;
+    const PhotonSettings& m_settings;
+    MapKind m_kind;
+    Visibility m_visibility;
+};
+
+void PhotonTracer::store(const PhotonPath& path, const Photon& photon, PhotonOutput out) const {
+    const bool direct = path.bounce == 0;
+    // Negative photons belong to the dynamic map only; the others to their own map.
+    if (!path.negative && (m_kind == MapKind::global || path.specular_path)) out.main.push_back(photon);
+    // Direct hits stay out of the dynamic map: direct light is ray traced (paper §3.1, a b g).
+    if (out.dynamic && path.dynamic && !direct) out.dynamic->push_back(photon);
+}
+
+void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
+    for (; path.bounce < m_settings.max_bounces; ++path.bounce) {
+        // Negative photons live in the static scene: they pass through every dynamic object.
+        const Visibility visibility = path.negative ? Visibility::static_only : m_visibility;
+        const std::optional<Hit> hit = m_context.tracer.intersect(path.ray, visibility);
+        if (!hit) return;
+        const SurfacePoint sp = make_surface_point(m_context.scene, m_context.frame, path.ray, *hit);
+
+        // The first dynamic hit: from here the path differs from the static one, which a
+        // negative photon follows on with the same ray and the same random numbers.
+        if (out.dynamic && !path.dynamic && m_context.scene.object(sp.object).is_dynamic()) {
+            PhotonPath negative = path;
+            negative.dynamic = negative.negative = true;
+            negative.power = path.power * -1.0f;
+            follow(negative, out);
+            path.dynamic = true;
+        }
+
+        const Bsdf& bsdf = m_context.bsdf_of(sp.object);
+        const Vec3 arrival_n = dot(sp.ng, path.ray.d) < 0 ? sp.ng : -sp.ng;
         if (bsdf.is_diffuse()) {
-            if (kind == MapKind::global || specular_path)
-                out.push_back({sp.p, arrival_n, -ray.d, power, uint16_t(bounce)});
-            if (kind == MapKind::caustic) return;
+            store(path, {sp.p, arrival_n, -path.ray.d, path.power, uint16_t(path.bounce)}, out);
+            if (m_kind == MapKind::caustic) return;  // a caustic path ends at its first diffuse hit
         }
 
         // Scatter, or be absorbed: survive with the probability of the scattered power.
         const Frame frame = Frame::from_normal(sp.ns);
-        const float u_lobe = sampler.next(), u_survive = sampler.next();
-        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-ray.d), sampler.next_vec2(), u_lobe,
+        const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
+        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
                                                          TransportMode::importance);
         if (!bs) return;
         const float survive = std::min(1.0f, max_component(bs->weight));
         if (!(u_survive < survive)) return;
-        power *= bs->weight / survive;
-        specular_path = (bounce == 0 || specular_path) && !bsdf.is_diffuse();
-        ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+        path.power *= bs->weight / survive;
+        path.specular_path = (path.bounce == 0 || path.specular_path) && !bsdf.is_diffuse();
+        path.ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
     }
 }
 
-PhotonMap trace_map(const FrameContext& context, long count, MapKind kind, const PhotonSettings& settings,
-                    Visibility visibility) {
+/// The photons of `count` paths of one kind, and of the dynamic map when `dynamic` is set.
+std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long count, MapKind kind,
+                                          const PhotonSettings& settings, Visibility visibility, bool dynamic) {
     if (count <= 0 || context.lights.empty()) return {};
-    // Chunks store into their own vectors, joined in chunk order: the same map for any threads.
+    // Chunks store into their own vectors, joined in chunk order: the same maps for any threads.
     constexpr long chunk = 4096;
-    std::vector<std::vector<Photon>> chunks(size_t((count + chunk - 1) / chunk));
+    const size_t chunks = size_t((count + chunk - 1) / chunk);
+    std::vector<std::vector<Photon>> main(chunks), dynamic_photons(chunks);
     // The caustic map uses other points of the sequence than the global one.
     const uint64_t first = kind == MapKind::global ? 0 : uint64_t(1) << 32;
     const float scale = 1.0f / float(count);
+    const PhotonTracer tracer(context, settings, kind, visibility);
     parallel_for_chunks(count, chunk, [&](long begin, long end) {
-        std::vector<Photon>& out = chunks[size_t(begin / chunk)];
-        for (long i = begin; i < end; ++i) trace_photon(context, first + uint64_t(i), scale, kind, settings, visibility, out);
+        const size_t c = size_t(begin / chunk);
+        const PhotonOutput out{main[c], dynamic ? &dynamic_photons[c] : nullptr};
+        for (long i = begin; i < end; ++i) tracer.trace(first + uint64_t(i), scale, out);
     });
-    std::vector<Photon> photons;
-    for (const auto& c : chunks) photons.insert(photons.end(), c.begin(), c.end());
-    return PhotonMap(std::move(photons), count);
+    const auto join = [](const std::vector<std::vector<Photon>>& parts) {
+        std::vector<Photon> all;
+        for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+        return all;
+    };
+    return {PhotonMap(join(main), count), PhotonMap(join(dynamic_photons), dynamic ? count : 0)};
 }
 
 }  // namespace
 
 TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& settings, Visibility visibility) {
-    return {trace_map(context, settings.global_photons, MapKind::global, settings, visibility),
-            trace_map(context, settings.caustic_photons, MapKind::caustic, settings, visibility)};
+    const bool dynamic = visibility == Visibility::everything && !context.scene.dynamic_objects().empty();
+    auto [global, dynamic_map] = trace_map(context, settings.global_photons, MapKind::global, settings, visibility, dynamic);
+    auto [caustic, unused] = trace_map(context, settings.caustic_photons, MapKind::caustic, settings, visibility, false);
+    return {std::move(global), std::move(caustic), std::move(dynamic_map)};
 }
 
 }  // namespace steadylight

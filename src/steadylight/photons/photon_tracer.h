@@ -3,6 +3,11 @@
 // by reflectance so that the power of surviving photons stays constant. Every random decision of
 // photon i comes from point i of the scrambled Halton sequence (base/halton.h), so the photons
 // of a frame depend only on the scene at that frame (paper §4).
+//
+// In a scene with dynamic objects the same pass also fills the dynamic photon map (paper §3.1,
+// DESIGN.md §2.1): from a path's first dynamic hit on, its diffuse hits are stored there (except
+// direct hits), and a negative photon re-traces the static path the photon would have taken
+// without the dynamic objects, with the same random numbers, carrying negated power.
 #pragma once
 
 #include "steadylight/integrators/frame_context.h"
@@ -19,10 +24,13 @@ struct PhotonSettings {
 struct TracedPhotons {
     PhotonMap global;   // every diffuse hit, direct ones included (for final gathering)
     PhotonMap caustic;  // diffuse hits after one or more specular bounces (L S+ D)
+    PhotonMap dynamic;  // the change the dynamic objects make: positive and negative photons
 };
 
 /// Traces both kinds of photons in the scene as `context.frame` places it, seeing the objects
-/// that `visibility` allows. Deterministic: the maps are the same for any thread count.
+/// that `visibility` allows; with Visibility::everything in a scene with dynamic objects it also
+/// fills the dynamic map (from the global photons' paths). Deterministic: the maps are the same
+/// for any thread count.
 TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& settings,
                             Visibility visibility = Visibility::everything);
 
