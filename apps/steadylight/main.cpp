@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
         ->capture_default_str()->check(CLI::Range(0.5f, 1000.0f));
     render->add_option("--cache-max-spacing", photon.cache.max_spacing_px, "photon: largest record spacing in pixels")
         ->capture_default_str()->check(CLI::Range(1.0f, 10000.0f));
-    render->add_option("--direct-samples", photon.direct_samples, "photon: shadow rays per diffuse hit and camera ray")
+    render->add_option("--direct-samples", photon.shading.direct_samples, "photon: shadow rays per diffuse hit and camera ray")
         ->capture_default_str()->check(CLI::Range(1, 4096));
     render->add_flag("!--jittered-gather", photon.gather.fixed_directions,
                      "photon: new gather directions per record instead of one fixed set");
@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
         }
         if (!frames.empty()) settings.frames = parse_frame_range(frames);
         if (!size.empty()) parse_size(size, settings);
-        if (spp) settings.path.samples_per_pixel = settings.photon.samples_per_pixel = *spp;
+        if (spp) settings.path.samples_per_pixel = settings.photon.shading.samples_per_pixel = *spp;
         settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(gather_samples / 2.0))));
         settings.photon.gather.phi_strata = 2 * settings.photon.gather.theta_strata;
         if (settings.photon.cache.max_spacing_px < settings.photon.cache.min_spacing_px)

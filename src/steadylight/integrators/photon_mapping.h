@@ -2,14 +2,14 @@
 // reference method, DESIGN.md §2.4), every frame from scratch:
 //   photon tracing (global and caustic maps) -> irradiance precomputed at photons (Christensen
 //   1999) -> irradiance cache over the image by final gathering -> per pixel
-//   L_r = L_d + L_i + L_c + L_s (direct by shadow rays, indirect from the cache, caustics from
-//   the caustic map, specular and glossy by recursive ray tracing).
-// The localized method (paper §3) reuses these pieces with a static cache.
+//   L_r = L_d + L_i + L_c + L_s (shading_pass.h).
+// The localized method (paper §3, localized.h) reuses these pieces with a static cache.
 #pragma once
 
 #include "steadylight/base/image.h"
 #include "steadylight/integrators/frame_context.h"
 #include "steadylight/integrators/frame_stats.h"
+#include "steadylight/integrators/shading_pass.h"
 #include "steadylight/irradiance/cache_builder.h"
 #include "steadylight/photons/photon_tracer.h"
 
@@ -19,12 +19,9 @@ struct PhotonMappingSettings {
     PhotonSettings photons;
     DensitySettings irradiance_estimate{.k = 50, .max_radius = 0.5f};  // at the precomputed photons
     int irradiance_stride = 4;        // precompute irradiance at every n-th global photon
-    DensitySettings caustic_estimate{.k = 50, .max_radius = 0.2f};
     GatherSettings gather;
     CacheSettings cache;
-    int samples_per_pixel = 16;       // camera rays per pixel, stratified
-    int direct_samples = 2;           // shadow rays per diffuse hit and camera ray, stratified over the pixel
-    int max_specular_depth = 8;       // mirror, glass and glossy bounces followed from the camera
+    ShadingSettings shading;
 };
 
 /// The frame and its parts (AOVs). beauty = direct + indirect + caustic + specular.
@@ -35,5 +32,11 @@ struct PhotonFrame {
 };
 
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings);
+
+/// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
+/// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.
+Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
+                      const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather, std::atomic<long>& fallbacks,
+                      std::atomic<long>& gather_rays);
 
 }  // namespace steadylight

@@ -27,7 +27,7 @@ PhotonMappingSettings test_settings() {
     PhotonMappingSettings settings;
     settings.photons.global_photons = 100'000;
     settings.photons.caustic_photons = 20'000;
-    settings.samples_per_pixel = 16;
+    settings.shading.samples_per_pixel = 16;
     return settings;
 }
 

@@ -1,0 +1,44 @@
+// Final gathering against a photon map, shared by the photon-mapping method and the localized
+// method: what a gather ray brings back, which point of each pixel gets cached irradiance, and
+// building a cache over the camera's image (DESIGN.md §1, §2.4).
+#pragma once
+
+#include <functional>
+
+#include "steadylight/base/image.h"
+#include "steadylight/integrators/frame_context.h"
+#include "steadylight/irradiance/cache_builder.h"
+#include "steadylight/photons/photon_map.h"
+#include "steadylight/shading/surface_point.h"
+
+namespace steadylight {
+
+/// The surface point with its normals turned to face the incoming direction `d`.
+SurfacePoint face_towards(SurfacePoint sp, Vec3 d);
+
+/// Radiance a final-gather ray brings back: at a diffuse surface rho / pi times the precomputed
+/// irradiance there (its whole outgoing radiance, direct included); through mirrors and glass it
+/// continues; emitters add nothing (that light is L_d). Sees what `visibility` allows.
+GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
+                              Visibility visibility, Ray ray);
+
+/// The diffuse surface point a pixel's centre sees directly (seeing what `visibility` allows),
+/// where its indirect irradiance is cached; std::nullopt for background and non-diffuse surfaces.
+std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y);
+
+/// Adds records to `cache` over the camera's image by final gathering against `photons`, at the
+/// pixels `wanted` accepts (all when empty).
+struct PhotonCacheBuild {
+    const FrameContext& context;
+    const IrradiancePhotons& photons;
+    float max_radius;           // of the precomputed-irradiance look-up
+    const GatherSettings& gather;
+    Visibility visibility;
+    std::function<bool(const CachePoint&, int x, int y)> wanted;
+};
+CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build);
+
+/// 1 at the pixels where records project, 0 elsewhere (paper Fig. 3).
+Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records);
+
+}  // namespace steadylight

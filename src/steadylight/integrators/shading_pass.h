@@ -1,0 +1,43 @@
+// The shading pass of photon mapping: every pixel's camera rays, L_r = L_d + L_i + L_c + L_s.
+// Direct light by stratified shadow rays, caustics from the caustic map, specular and glossy by
+// recursive ray tracing; the indirect irradiance L_i comes from the method (the irradiance cache
+// of --method photon, or the localized method's blend of L_y and L_t), which may also fill
+// layers of its own.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <functional>
+
+#include "steadylight/base/image.h"
+#include "steadylight/integrators/frame_context.h"
+#include "steadylight/photons/photon_map.h"
+#include "steadylight/shading/surface_point.h"
+
+namespace steadylight {
+
+struct ShadingSettings {
+    int samples_per_pixel = 16;    // camera rays per pixel, stratified
+    int direct_samples = 2;        // shadow rays per diffuse hit and camera ray, stratified over the pixel
+    int max_specular_depth = 8;    // mirror, glass and glossy bounces followed from the camera
+    DensitySettings caustic_estimate{.k = 50, .max_radius = 0.2f};
+};
+
+/// Up to four layers of the method's own (influence, L_y, L_t, ...), one value per camera ray.
+constexpr int max_extra_layers = 4;
+using ExtraLayers = std::array<Rgb, max_extra_layers>;
+
+/// Indirect irradiance at diffuse point `sp` with normal `n` (facing the viewer). `extra` is
+/// non-null for the points the camera sees directly: the method writes its layers there.
+using IndirectIrradiance = std::function<Rgb(const SurfacePoint& sp, Vec3 n, ExtraLayers* extra)>;
+
+struct ShadedFrame {
+    Image beauty, direct, indirect, caustic, specular;
+    std::array<Image, max_extra_layers> extra;
+    double caustic_cpu_s = 0;  // time in caustic estimates, summed over threads
+};
+
+ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
+                        const IndirectIrradiance& indirect);
+
+}  // namespace steadylight
