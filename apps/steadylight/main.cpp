@@ -26,6 +26,52 @@ void parse_size(const std::string& text, RenderSettings& settings) {
     settings.height = std::stoi(match[2]);
 }
 
+/// Command-line values that need checking or converting after parsing.
+struct RawOptions {
+    std::string frames, size;
+    std::optional<int> spp;
+    int threads = 0;
+    int gather_samples = 0;
+};
+
+/// The options `render` and `bake` share: the scene, output, and every setting of the methods.
+void add_method_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
+    command->add_option("scene", settings.scene_file, "Scene file (JSON)")->required();
+    command->add_option("--size", raw.size, "Image size WIDTHxHEIGHT (default: the scene's)");
+    command->add_option("--threads", raw.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+    command->add_option("--out", settings.out_dir, "Output folder")->capture_default_str();
+    PhotonMappingSettings& photon = settings.photon;
+    command->add_option("--photons", photon.photons.global_photons, "photon paths emitted per frame for the global map")
+        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
+    command->add_option("--caustic-photons", photon.photons.caustic_photons, "photon paths emitted per frame for the caustic map")
+        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
+    raw.gather_samples = photon.gather.theta_strata * photon.gather.phi_strata;
+    command->add_option("--gather-samples", raw.gather_samples, "final-gather rays per record, as M x 2M strata (rounded)")
+        ->capture_default_str()->check(CLI::Range(8, 1 << 16));
+    command->add_option("--cache-accuracy", photon.cache.accuracy, "Ward's a; smaller = more records")
+        ->capture_default_str()->check(CLI::Range(0.01f, 2.0f));
+    command->add_option("--cache-spacing", photon.cache.min_spacing_px, "smallest reach of a record in pixels")
+        ->capture_default_str()->check(CLI::Range(0.5f, 1000.0f));
+    command->add_option("--cache-max-spacing", photon.cache.max_spacing_px, "largest reach of a record in pixels")
+        ->capture_default_str()->check(CLI::Range(1.0f, 10000.0f));
+    command->add_flag("!--jittered-gather", photon.gather.fixed_directions,
+                      "new gather directions per record instead of one fixed set");
+    command->add_option("--cache-file", settings.cache_file, "static cache file (default: OUT/SCENE.irrcache)");
+}
+
+/// Checks and converts what add_method_options and the render options read.
+void finish_settings(const RawOptions& raw, RenderSettings& settings) {
+    if (!raw.frames.empty()) settings.frames = parse_frame_range(raw.frames);
+    if (!raw.size.empty()) parse_size(raw.size, settings);
+    if (raw.spp) settings.path.samples_per_pixel = settings.photon.shading.samples_per_pixel = *raw.spp;
+    settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(raw.gather_samples / 2.0))));
+    settings.photon.gather.phi_strata = 2 * settings.photon.gather.theta_strata;
+    if (settings.photon.cache.max_spacing_px < settings.photon.cache.min_spacing_px)
+        throw InputError("--cache-max-spacing", "must not be smaller than --cache-spacing");
+    if (!(settings.localized.tau_lower < settings.localized.tau_upper))
+        throw InputError("--tau-upper", "must be larger than --tau-lower");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -34,42 +80,34 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     RenderSettings settings;
-    std::string frames, size;
-    int threads = 0;
+    RawOptions raw;
     CLI::App* render = app.add_subcommand("render", "Render the frames of a scene");
-    render->add_option("scene", settings.scene_file, "Scene file (JSON)")->required();
-    render->add_option("--frames", frames, "Frame N or inclusive range A-B (default: all)");
-    std::optional<int> spp;
-    render->add_option("--spp", spp, "Samples per pixel (default: 64 for path, 16 for photon)")
+    add_method_options(render, settings, raw);
+    render->add_option("--frames", raw.frames, "Frame N or inclusive range A-B (default: all)");
+    render->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
         ->check(CLI::Range(1, 1 << 20));
-    render->add_option("--size", size, "Image size WIDTHxHEIGHT (default: the scene's)");
-    render->add_option("--threads", threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-    render->add_option("--out", settings.out_dir, "Output folder")->capture_default_str();
     render->add_option("--method,--integrator", settings.method,
-                       "path: path-traced ground truth; photon: photon mapping with final gathering")
-        ->capture_default_str()->check(CLI::IsMember({"path", "photon"}));
-    PhotonMappingSettings& photon = settings.photon;
-    render->add_option("--photons", photon.photons.global_photons, "photon: paths emitted for the global map")
-        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
-    render->add_option("--caustic-photons", photon.photons.caustic_photons, "photon: paths emitted for the caustic map")
-        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
-    int gather_samples = photon.gather.theta_strata * photon.gather.phi_strata;
-    render->add_option("--gather-samples", gather_samples,
-                       "photon: final-gather rays per record, as M x 2M strata (rounded)")
-        ->capture_default_str()->check(CLI::Range(8, 1 << 16));
-    render->add_option("--cache-accuracy", photon.cache.accuracy, "photon: Ward's a; smaller = more records")
-        ->capture_default_str()->check(CLI::Range(0.01f, 2.0f));
-    render->add_option("--cache-spacing", photon.cache.min_spacing_px, "photon: smallest record spacing in pixels")
-        ->capture_default_str()->check(CLI::Range(0.5f, 1000.0f));
-    render->add_option("--cache-max-spacing", photon.cache.max_spacing_px, "photon: largest record spacing in pixels")
-        ->capture_default_str()->check(CLI::Range(1.0f, 10000.0f));
-    render->add_option("--direct-samples", photon.shading.direct_samples, "photon: shadow rays per diffuse hit and camera ray")
+                       "localized: the paper's method; photon: photon mapping every frame from scratch; "
+                       "frozen: static cache reused as it is; path: path-traced ground truth")
+        ->capture_default_str()->check(CLI::IsMember({"localized", "photon", "frozen", "path"}));
+    render->add_option("--direct-samples", settings.photon.shading.direct_samples,
+                       "shadow rays per diffuse hit and camera ray")
         ->capture_default_str()->check(CLI::Range(1, 4096));
-    render->add_flag("!--jittered-gather", photon.gather.fixed_directions,
-                     "photon: new gather directions per record instead of one fixed set");
-    render->add_option("--max-depth", settings.path.max_depth, "Maximum path length in bounces")
+    render->add_option("--influence-photons", settings.localized.influence_photons,
+                       "localized: dynamic photons in the influence estimate")
+        ->capture_default_str()->check(CLI::Range(1, 100000));
+    render->add_option("--tau-lower", settings.localized.tau_lower,
+                       "localized: influence (relative to static indirect irradiance) below which L_t alone is used")
+        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
+    render->add_option("--tau-upper", settings.localized.tau_upper, "localized: influence above which L_y alone is used")
+        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
+    render->add_option("--max-depth", settings.path.max_depth, "path: maximum path length in bounces")
         ->capture_default_str()->check(CLI::Range(0, 10000));
     render->add_flag("!--no-progress", settings.show_progress, "No progress output");
+    render->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
+
+    CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
+    add_method_options(bake, settings, raw);
 
     std::string info_scene;
     CLI::App* info = app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
@@ -87,16 +125,14 @@ int main(int argc, char** argv) {
             std::fputs(describe_scene(info_scene).c_str(), stdout);
             return 0;
         }
-        if (!frames.empty()) settings.frames = parse_frame_range(frames);
-        if (!size.empty()) parse_size(size, settings);
-        if (spp) settings.path.samples_per_pixel = settings.photon.shading.samples_per_pixel = *spp;
-        settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(gather_samples / 2.0))));
-        settings.photon.gather.phi_strata = 2 * settings.photon.gather.theta_strata;
-        if (settings.photon.cache.max_spacing_px < settings.photon.cache.min_spacing_px)
-            throw InputError("--cache-max-spacing", "must not be smaller than --cache-spacing");
+        finish_settings(raw, settings);
         std::unique_ptr<tbb::global_control> thread_limit;
-        if (threads > 0)
-            thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
+        if (raw.threads > 0)
+            thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(raw.threads));
+        if (*bake) {
+            for (const std::string& file : bake_static_caches(settings)) spdlog::info("static cache: {}", file);
+            return 0;
+        }
         const RenderSummary summary = render_animation(settings);
         spdlog::info("{} frame(s) written to {} in {:.1f} s", summary.frames_written, settings.out_dir, summary.seconds);
         return 0;

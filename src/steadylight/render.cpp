@@ -5,6 +5,7 @@
 #include <regex>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "steadylight/base/error.h"
 #include "steadylight/output/atomic_file.h"
@@ -43,10 +44,63 @@ struct RenderedFrame {
     std::optional<FrameStats> stats;
 };
 
-RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& context, Progress& progress) {
+bool is_localized(const RenderSettings& settings) { return settings.method == "localized" || settings.method == "frozen"; }
+
+LocalizedSettings localized_settings(const RenderSettings& settings) {
+    LocalizedSettings localized = settings.localized;
+    localized.base = settings.photon;
+    localized.frozen = settings.method == "frozen";
+    return localized;
+}
+
+/// `<out>/<scene>.irrcache`, or `--cache-file`; with several segments each gets its frames added:
+/// `<scene>_0000-0029.irrcache`.
+std::string cache_file_of(const RenderSettings& settings, const Scene& scene, const Segment& segment) {
+    namespace fs = std::filesystem;
+    fs::path file = settings.cache_file.empty() ? fs::path(settings.out_dir) / (scene.name() + ".irrcache")
+                                                : fs::path(settings.cache_file);
+    if (scene.segments().size() > 1)
+        file.replace_filename(fmt::format("{}_{:04d}-{:04d}{}", file.stem().string(), segment.first, segment.last,
+                                          file.extension().string()));
+    return file.string();
+}
+
+/// The segment pass of `segment`, from its cache file when that matches.
+StaticSolution static_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
+                               const Segment& segment) {
+    const std::string file = cache_file_of(settings, scene, segment);
+    StaticSolution solution = run_segment_pass(scene, tracer, segment.first, segment.last, localized_settings(settings), file);
+    if (solution.loaded)
+        spdlog::info("static cache: {} records loaded from {}", solution.records, file);
+    else
+        spdlog::info("static cache: {} records computed in {:.2f} s ({}), saved to {}", solution.records, solution.seconds,
+                     solution.file_note, file);
+    return solution;
+}
+
+RenderedFrame render_localized_frame(const RenderSettings& settings, const FrameContext& context,
+                                     const StaticSolution& solution) {
+    LocalizedFrame frame = render_localized(context, solution, localized_settings(settings));
+    return {frame.beauty,
+            {{"direct", std::move(frame.direct)},
+             {"indirect", std::move(frame.indirect)},
+             {"caustic", std::move(frame.caustic)},
+             {"specular", std::move(frame.specular)},
+             {"indirect_static", std::move(frame.indirect_static)},
+             {"L_y", std::move(frame.L_y)},
+             {"L_t", std::move(frame.L_t)},
+             {"influence", std::move(frame.influence)},
+             {"static_records", std::move(frame.static_records)},
+             {"dynamic_records", std::move(frame.dynamic_records)}},
+            frame.stats};
+}
+
+RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& context, Progress& progress,
+                           const StaticSolution* solution) {
     if (settings.method == "path")
         return {render_path_traced(context, settings.path, [&](int done, int total) { progress.update_frame(done, total); }),
                 {}, std::nullopt};
+    if (solution) return render_localized_frame(settings, context, *solution);
     PhotonFrame frame = render_photon_mapped(context, settings.photon);
     return {frame.beauty,
             {{"direct", std::move(frame.direct)},
@@ -62,6 +116,9 @@ void write_frame(const RenderSettings& settings, const Scene& scene, int frame, 
     for (const auto& [name, image] : rendered.layers) layers.push_back({name, &image});
     write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"), layers);
     write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty);
+    if (settings.aov_pngs)
+        for (const auto& [name, image] : rendered.layers)
+            write_png(frame_file_name(settings.out_dir, scene.name(), frame, name + ".png"), image);
     if (rendered.stats)
         write_text_file(frame_file_name(settings.out_dir, scene.name(), frame, "stats.json"),
                         nlohmann::json(*rendered.stats).dump(2) + "\n");
@@ -84,8 +141,8 @@ FrameRange parse_frame_range(const std::string& text) {
 
 RenderSummary render_animation(const RenderSettings& settings) {
     const Clock::time_point start = Clock::now();
-    if (settings.method != "path" && settings.method != "photon")
-        throw InputError("--method", "unknown method \"" + settings.method + "\" (path, photon)");
+    if (settings.method != "path" && settings.method != "photon" && !is_localized(settings))
+        throw InputError("--method", "unknown method \"" + settings.method + "\" (localized, photon, frozen, path)");
     const Scene scene = load_scene(settings);
     const FrameRange range = frames_to_render(settings, scene);
     std::filesystem::create_directories(settings.out_dir);
@@ -93,15 +150,22 @@ RenderSummary render_animation(const RenderSettings& settings) {
     // Build the acceleration structures once; each frame only moves the dynamic objects.
     RayTracer tracer(scene, scene.evaluate(range.first));
     const auto bsdfs = make_bsdfs(scene);
+    std::optional<StaticSolution> solution;
+    const Segment* solution_segment = nullptr;
     Progress progress(range.last - range.first + 1, settings.show_progress);
     RenderSummary summary;
     for (int frame = range.first; frame <= range.last; ++frame) {
         const Clock::time_point frame_start = Clock::now();
+        // Each segment's static pass runs (or is loaded) before its first frame.
+        if (is_localized(settings) && solution_segment != &scene.segment_of(frame)) {
+            solution_segment = &scene.segment_of(frame);
+            solution = static_solution(settings, scene, tracer, *solution_segment);
+        }
         const FrameState state = scene.evaluate(frame);
         tracer.set_frame(state);
         const LightSet lights(scene, state);
         const FrameContext context{scene, state, tracer, lights, bsdfs};
-        const RenderedFrame rendered = render_frame(settings, context, progress);
+        const RenderedFrame rendered = render_frame(settings, context, progress, solution ? &*solution : nullptr);
         write_frame(settings, scene, frame, rendered);
         ++summary.frames_written;
         progress.finish_frame(fmt::format("frame {:4d}  {:7.2f} s  {}{}", frame, seconds_since(frame_start),
@@ -110,6 +174,18 @@ RenderSummary render_animation(const RenderSettings& settings) {
     }
     summary.seconds = seconds_since(start);
     return summary;
+}
+
+std::vector<std::string> bake_static_caches(const RenderSettings& settings) {
+    const Scene scene = load_scene(settings);
+    std::filesystem::create_directories(settings.out_dir);
+    RayTracer tracer(scene, scene.evaluate(0));
+    std::vector<std::string> files;
+    for (const Segment& segment : scene.segments()) {
+        static_solution(settings, scene, tracer, segment);
+        files.push_back(cache_file_of(settings, scene, segment));
+    }
+    return files;
 }
 
 std::string describe_scene(const std::string& scene_file) {

@@ -4,8 +4,10 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "steadylight/integrators/path_tracer.h"
+#include "steadylight/integrators/localized.h"
 #include "steadylight/integrators/photon_mapping.h"
 
 namespace steadylight {
@@ -23,10 +25,15 @@ struct RenderSettings {
     std::string out_dir = "out";
     std::optional<FrameRange> frames;  // default: every frame of the scene
     std::optional<int> width, height;  // default: the scene camera's resolution
-    std::string method = "path";  // "path" (ground truth) or "photon" (photon mapping, paper's reference)
+    /// "localized" (the paper's method), "photon" (photon mapping every frame from scratch, the
+    /// paper's reference), "frozen" (static cache reused as it is) or "path" (ground truth).
+    std::string method = "localized";
     PathTracerSettings path;
-    PhotonMappingSettings photon;
+    PhotonMappingSettings photon;       // also the base of the localized and frozen methods
+    LocalizedSettings localized;        // its `base` and `frozen` are filled in from the above
+    std::string cache_file;             // static cache file; default <out>/<scene>.irrcache
     bool show_progress = true;
+    bool aov_pngs = false;              // also write each EXR layer as <scene>_<frame:04>.<layer>.png
 };
 
 struct RenderSummary {
@@ -37,6 +44,10 @@ struct RenderSummary {
 /// Renders the frames and writes `<out>/<scene>_<frame:04>.exr` (with AOV layers) and `.png`
 /// for each, and for photon mapping `<scene>_<frame:04>.stats.json`.
 RenderSummary render_animation(const RenderSettings& settings);
+
+/// Runs the segment pass of the localized method for every segment and writes the static cache
+/// files (`steadylight bake`), or leaves them when they match already. Returns their paths.
+std::vector<std::string> bake_static_caches(const RenderSettings& settings);
 
 /// A human-readable description of a scene: objects, triangles, lights, frames and the
 /// static/dynamic split (`steadylight info`).

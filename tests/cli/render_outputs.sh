@@ -1,14 +1,32 @@
 #!/usr/bin/env bash
-# Renders two small BALL frames and checks that exactly the expected files appear, whole.
+# Renders two small BALL frames with the path tracer and with the localized method (the
+# default) and checks that exactly the expected files appear, whole; a second localized run
+# must load the static cache the first one saved.
 set -euo pipefail
 binary=$1 source=$2 out=$3
+
+expect_files() {  # expect_files DIR FILE...
+  local dir=$1; shift
+  for file in "$@"; do [ -s "$dir/$file" ] || { echo "missing $dir/$file"; exit 1; }; done
+  [ "$(ls "$dir" | wc -l)" -eq $# ] || { echo "unexpected files in $dir:"; ls "$dir"; exit 1; }
+}
+
 rm -rf "$out"
-"$binary" render "$source/scenes/ball.json" --frames 3-4 --spp 1 --size 16x12 --out "$out" --no-progress
-for f in 3 4; do
-  for ext in exr png; do
-    file="$out/ball_000$f.$ext"
-    [ -s "$file" ] || { echo "missing $file"; exit 1; }
-  done
-done
-[ "$(ls "$out" | wc -l)" -eq 4 ] || { echo "unexpected files:"; ls "$out"; exit 1; }
+"$binary" render "$source/scenes/ball.json" --method path --frames 3-4 --spp 1 --size 16x12 --out "$out/path" --no-progress
+expect_files "$out/path" ball_0003.exr ball_0003.png ball_0004.exr ball_0004.png
+
+small=(--frames 3-4 --spp 1 --size 16x12 --photons 5000 --caustic-photons 0 --gather-samples 32 --no-progress)
+"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized"
+expect_files "$out/localized" ball.irrcache ball_0003.exr ball_0003.png ball_0003.stats.json \
+  ball_0004.exr ball_0004.png ball_0004.stats.json
+"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized" 2>&1 | tee "$out/second.log"
+grep -q "records loaded from" "$out/second.log" || { echo "the second run did not load the static cache"; exit 1; }
+# A damaged cache file is rejected, recomputed and replaced: never a crash or a wrong picture.
+head -c 100 "$out/localized/ball.irrcache" > "$out/cut" && mv "$out/cut" "$out/localized/ball.irrcache"
+"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized" 2>&1 | tee "$out/third.log"
+grep -q "computed in .*truncated" "$out/third.log" || { echo "the truncated cache was not recomputed"; exit 1; }
+# bake writes the cache a later render then loads.
+"$binary" bake "$source/scenes/ball.json" --size 16x12 --photons 5000 --gather-samples 32 --out "$out/baked"
+"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/baked" > "$out/baked.log" 2>&1
+grep -q "records loaded from" "$out/baked.log" || { echo "render did not load the baked cache"; exit 1; }
 echo "ok"

@@ -12,23 +12,29 @@ void to_json(nlohmann::json& json, const FrameStats& s) {
               {"global_stored", s.global_photons_stored},
               {"caustic_emitted", s.caustic_photons_emitted},
               {"caustic_stored", s.caustic_photons_stored},
+              {"dynamic_stored", s.dynamic_photons_stored},
               {"irradiance_precomputed", s.irradiance_photons}}},
             {"irradiance_records", s.irradiance_records},
+            {"static_records", s.static_records},
             {"fallback_gathers", s.fallback_gathers},
             {"gather_rays", s.gather_rays},
             {"seconds",
              {{"photon_tracing", s.photon_tracing_s},
               {"cache", s.cache_s},
+              {"influence", s.influence_s},
+              {"correction", s.correction_s},
               {"direct", s.direct_s},
               {"caustics", s.caustics_s},
               {"total", s.total_s}}}};
 }
 
 std::string summarize(const FrameStats& s) {
-    return fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M | photons {:.2f} s, cache {:.2f} s, "
-                       "shading {:.2f} s (caustics {:.2f} s cpu)",
-                       s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
-                       double(s.gather_rays) / 1e6, s.photon_tracing_s, s.cache_s, s.direct_s, s.caustics_s);
+    std::string text = fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M | photons {:.2f} s, cache {:.2f} s, ",
+                                   s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
+                                   double(s.gather_rays) / 1e6, s.photon_tracing_s, s.cache_s);
+    if (s.method != "photon")
+        text += fmt::format("influence {:.2f} s, L_t {:.2f} s, ", s.influence_s, s.correction_s);
+    return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.direct_s, s.caustics_s);
 }
 
 }  // namespace steadylight

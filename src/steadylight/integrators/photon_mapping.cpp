@@ -54,7 +54,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
         });
     };
     std::atomic<long> fallbacks = 0, gather_rays = 0;
-    ShadedFrame shaded = shade_frame(context, settings.shading, photons.caustic, [&](const SurfacePoint& sp, Vec3 n, ExtraLayers*) {
+    ShadedFrame shaded = shade_frame(context, settings.shading, photons.caustic, [&](const SurfacePoint& sp, Vec3 n, const PixelSample&, ExtraLayers*) {
         return cached_irradiance(cache, sp, n, gather, fallbacks, gather_rays);
     });
     stats.direct_s = phase.elapsed_s();

@@ -34,14 +34,15 @@ public:
            const IndirectIrradiance& indirect)
         : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect) {}
 
-    Components shade(const Ray& ray, int depth, bool count_emission, const LightStrata& strata, Pcg32& rng) const;
+    Components shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel, const LightStrata& strata,
+                     Pcg32& rng) const;
     double caustic_cpu_s() const { return double(m_caustic_ns) * 1e-9; }
 
 private:
     Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
                      Pcg32& rng) const;
     void shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
-                       const LightStrata& strata, Pcg32& rng, Components& c) const;
+                       const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const;
 
     const FrameContext& m_context;
     const ShadingSettings& m_settings;
@@ -67,16 +68,17 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
 }
 
 void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
-                           const LightStrata& strata, Pcg32& rng, Components& c) const {
+                           const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const {
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance() * inv_pi;
     c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
-    c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, depth == 0 ? &c.extra : nullptr);
+    c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     const Stopwatch caustic_time;
     c.caustic = albedo_over_pi * m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate);
     m_caustic_ns += long(caustic_time.elapsed_s() * 1e9);
 }
 
-Components Shader::shade(const Ray& ray, int depth, bool count_emission, const LightStrata& strata, Pcg32& rng) const {
+Components Shader::shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel,
+                         const LightStrata& strata, Pcg32& rng) const {
     Components c;
     const std::optional<Hit> hit = m_context.tracer.intersect(ray);
     if (!hit) return c;
@@ -90,7 +92,7 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const L
     const Frame frame = Frame::from_normal(sp.ns);
     const Vec3 wo = frame.to_local(-ray.d);
     if (bsdf.is_diffuse()) {
-        shade_diffuse(sp, frame, bsdf, wo, depth, strata, rng, c);
+        shade_diffuse(sp, frame, bsdf, wo, depth, pixel, strata, rng, c);
         return c;
     }
     // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
@@ -101,7 +103,7 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const L
     const std::optional<BsdfSample> bs = bsdf.sample(wo, rng.next_vec2(), u_lobe, TransportMode::radiance);
     if (!bs) return c;
     const Ray next = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
-    c.specular = bs->weight * shade(next, depth + 1, bs->is_delta, LightStrata{}, rng).sum();
+    c.specular = bs->weight * shade(next, depth + 1, bs->is_delta, pixel, LightStrata{}, rng).sum();
     return c;
 }
 
@@ -119,15 +121,17 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
     parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
-                Pcg32 rng(hash_ids(uint64_t(context.frame.frame), uint64_t(y) * uint64_t(camera.width) + uint64_t(x), 0x9e01));
+                // The same numbers for a pixel in every frame: where nothing changes, nothing
+                // flickers (paper §4; bit-identical static regions).
+                Pcg32 rng(hash_ids(uint64_t(y) * uint64_t(camera.width) + uint64_t(x), 0x9e01));
                 const Vec2 shift = rng.next_vec2();
                 const LightStrata strata{0, uint32_t(n * settings.direct_samples), rng.next_vec2()};
                 Components sum;
                 for (int s = 0; s < n; ++s) {
                     const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
                     const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-                    const Components c =
-                        shader.shade(ray, 0, true, {uint32_t(s * settings.direct_samples), strata.count, strata.shift}, rng);
+                    const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
+                    const Components c = shader.shade(ray, 0, true, {x, y, s, n}, ray_strata, rng);
                     if (!is_finite(c.sum())) continue;
                     sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
                     for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];

@@ -27,9 +27,17 @@ struct ShadingSettings {
 constexpr int max_extra_layers = 4;
 using ExtraLayers = std::array<Rgb, max_extra_layers>;
 
-/// Indirect irradiance at diffuse point `sp` with normal `n` (facing the viewer). `extra` is
-/// non-null for the points the camera sees directly: the method writes its layers there.
-using IndirectIrradiance = std::function<Rgb(const SurfacePoint& sp, Vec3 n, ExtraLayers* extra)>;
+/// Which camera ray of which pixel is being shaded.
+struct PixelSample {
+    int x = 0, y = 0;
+    int sample = 0;   // 0 .. samples_per_pixel - 1
+    int samples = 1;
+};
+
+/// Indirect irradiance at diffuse point `sp` with normal `n` (facing the viewer), for a camera
+/// ray of `pixel`. `extra` is non-null for the points the camera sees directly: the method adds
+/// its layers there (each ray's values are averaged over the pixel's rays).
+using IndirectIrradiance = std::function<Rgb(const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra)>;
 
 struct ShadedFrame {
     Image beauty, direct, indirect, caustic, specular;

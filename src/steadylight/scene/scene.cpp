@@ -1,5 +1,6 @@
 #include "steadylight/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace steadylight {
@@ -19,10 +20,33 @@ std::optional<Vec2> Camera::project(Vec3 p) const {
     return Vec2{(sx + 1) / 2 * float(width), (1 - sy) / 2 * float(height)};
 }
 
+namespace {
+
+std::vector<Segment> split_into_segments(const SceneDesc& desc) {
+    const bool moving_light = std::any_of(desc.objects.begin(), desc.objects.end(),
+                                          [](const ObjectDesc& o) { return o.is_emitter() && o.is_dynamic(); });
+    std::vector<int> starts{0};
+    for (int frame = 1; frame < desc.frame_count; ++frame)
+        if (moving_light || std::count(desc.segment_starts.begin(), desc.segment_starts.end(), frame)) starts.push_back(frame);
+    std::vector<Segment> segments;
+    for (size_t i = 0; i < starts.size(); ++i)
+        segments.push_back({starts[i], i + 1 < starts.size() ? starts[i + 1] - 1 : desc.frame_count - 1});
+    return segments;
+}
+
+}  // namespace
+
 Scene::Scene(SceneDesc desc) : m_desc(std::move(desc)) {
     validate(m_desc);
     for (int i = 0; i < int(m_desc.objects.size()); ++i)
         (m_desc.objects[size_t(i)].is_dynamic() ? m_dynamic : m_static).push_back(i);
+    m_segments = split_into_segments(m_desc);
+}
+
+const Segment& Scene::segment_of(int frame) const {
+    for (const Segment& segment : m_segments)
+        if (frame <= segment.last) return segment;
+    return m_segments.back();
 }
 
 void Scene::set_resolution(int width, int height) {

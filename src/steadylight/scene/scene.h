@@ -26,6 +26,12 @@ struct Camera {
     float pixel_footprint(float distance) const { return distance * 2 * tan_half_fov_y / float(height); }
 };
 
+/// Frames [first, last] whose lighting is coherent: they share one static irradiance cache.
+struct Segment {
+    int first = 0;
+    int last = 0;
+};
+
 /// Where everything is at one frame.
 struct FrameState {
     int frame = 0;
@@ -45,6 +51,10 @@ public:
     const std::vector<int>& static_objects() const { return m_static; }
     const std::vector<int>& dynamic_objects() const { return m_dynamic; }
     int frame_count() const { return m_desc.frame_count; }
+    /// The animation's segments (DESIGN.md §2): one by default; a new one where the scene file
+    /// says, and every frame on its own while an emitter moves (its light changes every frame).
+    const std::vector<Segment>& segments() const { return m_segments; }
+    const Segment& segment_of(int frame) const;
 
     /// The camera and object placements at `frame` (any integer; time is frame / fps).
     FrameState evaluate(int frame) const;
@@ -55,6 +65,7 @@ private:
     SceneDesc m_desc;
     std::vector<int> m_static;
     std::vector<int> m_dynamic;
+    std::vector<Segment> m_segments;
 };
 
 }  // namespace steadylight

@@ -306,6 +306,16 @@ SceneDesc load_scene_desc(const std::string& path) {
         desc.frame_count = 1 + int(std::floor(gltf_duration_s * desc.fps + 1e-3f));
     }
 
+    if (root.has("segments")) {
+        for (const float start : root.numbers("segments")) {
+            if (start != std::floor(start) || start < 0 || start >= float(desc.frame_count))
+                root.fail("segments", "segment starts must be whole frame numbers within the animation");
+            if (!desc.segment_starts.empty() && int(start) <= desc.segment_starts.back())
+                root.fail("segments", "segment starts must increase");
+            if (start > 0) desc.segment_starts.push_back(int(start));
+        }
+    }
+
     if (root.has("camera")) {
         desc.camera = parse_camera(root.object("camera"), desc.camera);
     } else if (!has_camera) {

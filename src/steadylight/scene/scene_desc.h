@@ -82,6 +82,7 @@ struct SceneDesc {
     std::vector<PointLightDesc> point_lights;
     int frame_count = 1;
     float fps = 24;
+    std::vector<int> segment_starts;  // frames where the scene file starts a new segment (besides 0)
 
     float frame_time_s(int frame) const { return float(frame) / fps; }
 };
