@@ -146,12 +146,20 @@ std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long coun
     return {PhotonMap(join(main), count), PhotonMap(join(dynamic_photons), dynamic ? count : 0)};
 }
 
+/// Caustic paths need a specular or glossy surface; without one the caustic map stays empty.
+bool has_non_diffuse_surface(const FrameContext& context) {
+    for (int object = 0; object < int(context.scene.objects().size()); ++object)
+        if (!context.bsdf_of(object).is_diffuse()) return true;
+    return false;
+}
+
 }  // namespace
 
 TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& settings, Visibility visibility) {
     const bool dynamic = visibility == Visibility::everything && !context.scene.dynamic_objects().empty();
     auto [global, dynamic_map] = trace_map(context, settings.global_photons, MapKind::global, settings, visibility, dynamic);
-    auto [caustic, unused] = trace_map(context, settings.caustic_photons, MapKind::caustic, settings, visibility, false);
+    const long caustic_count = has_non_diffuse_surface(context) ? settings.caustic_photons : 0;
+    auto [caustic, unused] = trace_map(context, caustic_count, MapKind::caustic, settings, visibility, false);
     return {std::move(global), std::move(caustic), std::move(dynamic_map)};
 }
 

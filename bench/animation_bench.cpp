@@ -1,0 +1,153 @@
+// The paper's comparison (its Tables 1-3) on BALL and TABLE: every frame rendered with the
+// photon method (from scratch), the frozen cache and the localized method, side by side:
+// irradiance records computed per frame, time for photon tracing, influence, L_y and L_t, the
+// relative RMSE of frozen and localized against the photon method, and temporal flicker (mean
+// absolute frame-to-frame change of luminance over the pixels no dynamic object ever covers,
+// relative to their mean luminance). Prints, asserts nothing.
+// Run: build/animation_bench [--scenes ball,table] [--frames N] [--size WxH]
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <sstream>
+
+#include "steadylight/integrators/localized.h"
+
+using namespace steadylight;
+
+namespace {
+
+struct Options {
+    std::vector<std::string> scenes{"ball", "table"};
+    int frames = 60;
+    int width = 320, height = 240;
+};
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        if (!std::strcmp(argv[i], "--frames")) o.frames = std::atoi(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--size")) std::sscanf(argv[i + 1], "%dx%d", &o.width, &o.height);
+        if (!std::strcmp(argv[i], "--scenes")) {
+            o.scenes.clear();
+            std::stringstream list(argv[i + 1]);
+            for (std::string name; std::getline(list, name, ',');) o.scenes.push_back(name);
+        }
+    }
+    return o;
+}
+
+/// One method's figures summed over the frames.
+struct Totals {
+    double records = 0, photon_s = 0, influence_s = 0, L_y_s = 0, L_t_s = 0, total_s = 0;
+    double rmse_vs_photon = 0, flicker = 0;
+    std::vector<Image> images;
+
+    void add(const FrameStats& s) {
+        records += double(s.irradiance_records);
+        photon_s += s.photon_tracing_s, influence_s += s.influence_s, L_y_s += s.cache_s, L_t_s += s.correction_s;
+        total_s += s.total_s;
+    }
+};
+
+/// Pixels whose centre sees a dynamic object in some frame.
+std::vector<bool> dynamic_coverage(const Scene& scene, RayTracer& tracer, int frames) {
+    std::vector<bool> covered;
+    for (int f = 0; f < frames; ++f) {
+        const FrameState state = scene.evaluate(f);
+        tracer.set_frame(state);
+        covered.resize(size_t(state.camera.width * state.camera.height), false);
+        for (int y = 0; y < state.camera.height; ++y)
+            for (int x = 0; x < state.camera.width; ++x) {
+                const std::optional<Hit> hit = tracer.intersect(state.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f));
+                if (hit && scene.object(hit->object).is_dynamic()) covered[size_t(y * state.camera.width + x)] = true;
+            }
+    }
+    return covered;
+}
+
+double relative_rmse(const Image& a, const Image& b) {
+    double sum2 = 0, sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const double ya = std::min(1.0f, luminance(a.pixels[i])), yb = std::min(1.0f, luminance(b.pixels[i]));
+        sum2 += (ya - yb) * (ya - yb), sum += yb;
+    }
+    return std::sqrt(sum2 / double(a.pixels.size())) / (sum / double(a.pixels.size()));
+}
+
+double flicker(const std::vector<Image>& images, const std::vector<bool>& covered) {
+    double change = 0, level = 0;
+    long count = 0;
+    for (size_t f = 1; f < images.size(); ++f)
+        for (size_t i = 0; i < covered.size(); ++i) {
+            if (covered[i]) continue;
+            const double now = std::min(1.0f, luminance(images[f].pixels[i])), before = std::min(1.0f, luminance(images[f - 1].pixels[i]));
+            change += std::abs(now - before), level += now, ++count;
+        }
+    return count ? change / level : 0;
+}
+
+void run_scene(const std::string& name, const Options& options) {
+    Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/" + name + ".json"));
+    scene.set_resolution(options.width, options.height);
+    const int frames = std::min(options.frames, scene.frame_count());
+    RayTracer tracer(scene, scene.evaluate(0));
+    const auto bsdfs = make_bsdfs(scene);
+    LocalizedSettings localized;
+    LocalizedSettings frozen = localized;
+    frozen.frozen = true;
+
+    const Stopwatch static_time;
+    const StaticSolution solution = run_segment_pass(scene, tracer, 0, scene.frame_count() - 1, localized);
+    const double static_s = static_time.elapsed_s();
+    std::map<std::string, Totals> totals;
+    for (int f = 0; f < frames; ++f) {
+        const FrameState state = scene.evaluate(f);
+        tracer.set_frame(state);
+        const LightSet lights(scene, state);
+        const FrameContext context{scene, state, tracer, lights, bsdfs};
+        PhotonFrame photon = render_photon_mapped(context, localized.base);
+        LocalizedFrame local = render_localized(context, solution, localized);
+        LocalizedFrame freeze = render_localized(context, solution, frozen);
+        totals["photon"].add(photon.stats);
+        totals["localized"].add(local.stats);
+        totals["frozen"].add(freeze.stats);
+        totals["localized"].rmse_vs_photon += relative_rmse(local.beauty, photon.beauty);
+        totals["frozen"].rmse_vs_photon += relative_rmse(freeze.beauty, photon.beauty);
+        totals["photon"].images.push_back(std::move(photon.beauty));
+        totals["localized"].images.push_back(std::move(local.beauty));
+        totals["frozen"].images.push_back(std::move(freeze.beauty));
+        std::fprintf(stderr, "\r%s: frame %d/%d", name.c_str(), f + 1, frames);
+    }
+    std::fprintf(stderr, "\n");
+    const std::vector<bool> covered = dynamic_coverage(scene, tracer, frames);
+    for (auto& [method, t] : totals) t.flicker = flicker(t.images, covered);
+
+    std::printf("\n%s, %dx%d, %d frames; static pass %.2f s (%ld records)\n", name.c_str(), options.width, options.height,
+                frames, static_s, solution.records);
+    std::printf("per frame (means)        %12s %12s %12s   photon/localized\n", "photon", "frozen", "localized");
+    const auto row = [&](const char* label, auto get) {
+        const double p = get(totals["photon"]) / frames, z = get(totals["frozen"]) / frames, l = get(totals["localized"]) / frames;
+        std::printf("%-24s %12.3f %12.3f %12.3f   %8.1fx\n", label, p, z, l, l > 0 ? p / l : 0.0);
+    };
+    row("records (Table 1)", [](const Totals& t) { return t.records; });
+    row("photon tracing s", [](const Totals& t) { return t.photon_s; });
+    row("influence I s", [](const Totals& t) { return t.influence_s; });
+    row("L_y (cache) s", [](const Totals& t) { return t.L_y_s; });
+    row("L_t s", [](const Totals& t) { return t.L_t_s; });
+    row("indirect total s", [](const Totals& t) { return t.influence_s + t.L_y_s + t.L_t_s; });
+    row("frame total s", [](const Totals& t) { return t.total_s; });
+    row("rel. RMSE vs photon", [](const Totals& t) { return t.rmse_vs_photon; });
+    std::printf("%-24s %12.5f %12.5f %12.5f   (mean |dY| / mean Y over never-covered pixels)\n", "flicker",
+                totals["photon"].flicker, totals["frozen"].flicker, totals["localized"].flicker);
+    std::printf("%-24s %12.2f s (static pass + frames)\n", "localized animation",
+                static_s + totals["localized"].total_s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options options = parse(argc, argv);
+    for (const std::string& scene : options.scenes) run_scene(scene, options);
+    return 0;
+}
