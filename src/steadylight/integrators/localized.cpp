@@ -101,7 +101,8 @@ struct IndirectParts {
 void fill_layers(const FrameContext& context, const IrradianceCache& static_cache, const SurfacePoint& sp, Vec3 n,
                  const PixelSample& pixel, const IndirectParts& parts, ExtraLayers& extra) {
     const Rgb albedo_over_pi = context.bsdf_of(sp.object).diffuse_reflectance() * inv_pi;
-    extra[0] = Rgb{1, 1, 1} * std::min(parts.influence, 1e6f);
+    // Dynamic objects always take L_y: shown as the largest influence.
+    extra[0] = Rgb{1, 1, 1} * (parts.on_dynamic ? 1e6f : std::min(parts.influence, 1e6f));
     extra[1] = albedo_over_pi * parts.L_y;
     extra[2] = albedo_over_pi * parts.L_t;
     if (pixel.sample == 0 && !parts.on_dynamic)
@@ -204,12 +205,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     const TracedPhotons photons = trace_photons(context, base.photons);
     const IrradiancePhotons irradiance(photons.global, base.irradiance_stride, base.irradiance_estimate);
     stats.photon_tracing_s = phase.elapsed_s();
-    stats.global_photons_emitted = photons.global.emitted();
-    stats.global_photons_stored = long(photons.global.size());
-    stats.caustic_photons_emitted = photons.caustic.emitted();
-    stats.caustic_photons_stored = long(photons.caustic.size());
-    stats.dynamic_photons_stored = long(photons.dynamic.size());
-    stats.irradiance_photons = long(irradiance.size());
+    record_photon_counts(stats, photons, irradiance);
 
     // Influence of the dynamic objects on each pixel's point.
     phase = Stopwatch();
@@ -221,10 +217,8 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     IrradianceCache dynamic_cache(base.cache);
     const float max_radius = base.irradiance_estimate.max_radius;
     const auto wanted = [&](const CachePoint& point, int x, int y) {
-        const std::optional<Hit> hit = context.tracer.intersect(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f));
-        const bool on_dynamic = hit && context.scene.object(hit->object).is_dynamic();
-        (void)point;
-        return on_dynamic || (!settings.frozen && influence.at(x, y) > settings.tau_lower);
+        return context.scene.object(point.object).is_dynamic() ||
+               (!settings.frozen && influence.at(x, y) > settings.tau_lower);
     };
     const CacheBuildStats built = build_photon_cache(dynamic_cache, {context, irradiance, max_radius, base.gather, Visibility::everything, wanted});
     stats.cache_s = phase.elapsed_s();
@@ -240,12 +234,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
 
     // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects.
     phase = Stopwatch();
-    const std::vector<Vec3> gather_dirs = gather_directions(base.gather, 0);
-    const auto gather = [&](const SurfacePoint& sp, Vec3 n) {
-        return final_gather(sp.p, n, sp.ng, gather_dirs, base.gather, [&](const Ray& r) {
-            return gather_from_photons(context, irradiance, max_radius, Visibility::everything, r);
-        });
-    };
+    const auto gather = make_point_gather(context, irradiance, max_radius, base.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra) {
         const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
@@ -262,11 +251,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     stats.fallback_gathers = fallbacks;
     stats.gather_rays = built.gather_rays + gather_rays;
 
-    out.beauty = std::move(shaded.beauty);
-    out.direct = std::move(shaded.direct);
-    out.indirect = std::move(shaded.indirect);
-    out.caustic = std::move(shaded.caustic);
-    out.specular = std::move(shaded.specular);
+    take_common_layers(shaded, out);
     out.influence = std::move(shaded.extra[0]);
     out.L_y = std::move(shaded.extra[1]);
     out.L_t = std::move(shaded.extra[2]);

@@ -46,7 +46,7 @@ std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility
     const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
     if (!hit || !context.bsdf_of(hit->object).is_diffuse()) return std::nullopt;
     const SurfacePoint sp = face_towards(make_surface_point(context.scene, context.frame, ray, *hit), ray.d);
-    return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(hit->t)};
+    return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(hit->t), sp.object};
 }
 
 CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build) {
@@ -65,6 +65,16 @@ CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuil
                 return gather_from_photons(build.context, build.photons, build.max_radius, build.visibility, r);
             });
         });
+}
+
+std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
+                                                                        const IrradiancePhotons& photons, float max_radius,
+                                                                        const GatherSettings& gather) {
+    return [&context, &photons, max_radius, &gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
+        return final_gather(sp.p, n, sp.ng, dirs, gather, [&](const Ray& r) {
+            return gather_from_photons(context, photons, max_radius, Visibility::everything, r);
+        });
+    };
 }
 
 Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records) {

@@ -38,6 +38,11 @@ struct PhotonCacheBuild {
 };
 CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build);
 
+/// A final gather at any surface point (seeing everything), for points no record covers.
+std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
+                                                                        const IrradiancePhotons& photons, float max_radius,
+                                                                        const GatherSettings& gather);
+
 /// 1 at the pixels where records project, 0 elsewhere (paper Fig. 3).
 Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records);
 

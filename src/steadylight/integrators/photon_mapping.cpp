@@ -18,6 +18,15 @@ Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3
     return g.record.E;
 }
 
+void record_photon_counts(FrameStats& stats, const TracedPhotons& photons, const IrradiancePhotons& irradiance) {
+    stats.global_photons_emitted = photons.global.emitted();
+    stats.global_photons_stored = long(photons.global.size());
+    stats.caustic_photons_emitted = photons.caustic.emitted();
+    stats.caustic_photons_stored = long(photons.caustic.size());
+    stats.dynamic_photons_stored = long(photons.dynamic.size());
+    stats.irradiance_photons = long(irradiance.size());
+}
+
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings) {
     const Stopwatch total;
     PhotonFrame out;
@@ -30,11 +39,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     const TracedPhotons photons = trace_photons(context, settings.photons);
     const IrradiancePhotons irradiance_photons(photons.global, settings.irradiance_stride, settings.irradiance_estimate);
     stats.photon_tracing_s = phase.elapsed_s();
-    stats.global_photons_emitted = photons.global.emitted();
-    stats.global_photons_stored = long(photons.global.size());
-    stats.caustic_photons_emitted = photons.caustic.emitted();
-    stats.caustic_photons_stored = long(photons.caustic.size());
-    stats.irradiance_photons = long(irradiance_photons.size());
+    record_photon_counts(stats, photons, irradiance_photons);
 
     // Pass 2a: the irradiance cache over the image, by final gathering.
     phase = Stopwatch();
@@ -47,12 +52,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
 
     // Pass 2b: shade every pixel.
     phase = Stopwatch();
-    const std::vector<Vec3> gather_dirs = gather_directions(settings.gather, 0);
-    const auto gather = [&](const SurfacePoint& sp, Vec3 n) {
-        return final_gather(sp.p, n, sp.ng, gather_dirs, settings.gather, [&](const Ray& r) {
-            return gather_from_photons(context, irradiance_photons, max_radius, Visibility::everything, r);
-        });
-    };
+    const auto gather = make_point_gather(context, irradiance_photons, max_radius, settings.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     ShadedFrame shaded = shade_frame(context, settings.shading, photons.caustic, [&](const SurfacePoint& sp, Vec3 n, const PixelSample&, ExtraLayers*) {
         return cached_irradiance(cache, sp, n, gather, fallbacks, gather_rays);
@@ -62,11 +62,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.fallback_gathers = fallbacks;
     stats.gather_rays = built.gather_rays + gather_rays;
 
-    out.beauty = std::move(shaded.beauty);
-    out.direct = std::move(shaded.direct);
-    out.indirect = std::move(shaded.indirect);
-    out.caustic = std::move(shaded.caustic);
-    out.specular = std::move(shaded.specular);
+    take_common_layers(shaded, out);
     out.records = record_picture(context.frame.camera, cache.records());
     stats.total_s = total.elapsed_s();
     return out;

@@ -33,6 +33,19 @@ struct PhotonFrame {
 
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings);
 
+/// Fills the photon counts of `stats` from a frame's photon maps.
+void record_photon_counts(FrameStats& stats, const TracedPhotons& photons, const IrradiancePhotons& irradiance);
+
+/// Moves the shading pass's common layers into a frame that has members of the same names.
+template <class FrameImages>
+void take_common_layers(ShadedFrame& shaded, FrameImages& out) {
+    out.beauty = std::move(shaded.beauty);
+    out.direct = std::move(shaded.direct);
+    out.indirect = std::move(shaded.indirect);
+    out.caustic = std::move(shaded.caustic);
+    out.specular = std::move(shaded.specular);
+}
+
 /// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
 /// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.
 Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,

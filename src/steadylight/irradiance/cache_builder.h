@@ -20,6 +20,7 @@ struct CachePoint {
     Vec3 n;                     // unit shading normal, facing the viewer
     Vec3 ng;                    // unit geometric normal, same side as n
     float pixel_footprint = 0;  // world-space size of one pixel at p
+    int object = -1;            // the object the point lies on
 };
 
 struct CacheBuildStats {
