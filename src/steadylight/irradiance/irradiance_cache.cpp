@@ -101,7 +101,6 @@ float ward_weight(const IrradianceRecord& record, Vec3 p, Vec3 n) {
     return error > 0 ? 1 / error : infinity;
 }
 
-/// The record's irradiance extrapolated to (p, n) by its gradients, clamped at 0 per channel.
 /// The record's irradiance carried to (p, n) by its gradients, limited to [0, 2 E]: near
 /// contact geometry translational gradients grow like 1 / (nearest distance), and a radius that
 /// was clamped up to the minimum spacing lets a record reach well past where its gradient holds
@@ -127,6 +126,9 @@ const std::vector<WeightedRecord>& usable_records(const SphereGrid& index, const
     thread_local std::vector<WeightedRecord> used;
     used.clear();
     index.for_each_candidate(p, [&](uint32_t id) {
+        // w_i > 1 / a needs |p - p_i| < a R_i: most candidates fail this cheap test.
+        const float reach = accuracy * records[id].radius;
+        if (length2(p - records[id].p) >= reach * reach) return;
         const float weight = ward_weight(records[id], p, n);
         if (weight > 1 / accuracy) used.push_back({id, weight});
     });
