@@ -36,7 +36,7 @@ IrradianceCache corrected_cache(const IrradianceCache& static_cache, const Photo
 }
 
 /// The influence I (paper §3.3) relative to the static indirect irradiance, at every
-/// `step`-th pixel centre; infinity on dynamic objects, which always take L_y.
+/// `step`-th pixel centre; the pixels between take their block's value.
 struct InfluenceMap {
     int width = 0, height = 0, step = 1;
     std::vector<float> values;  // (width / step rounded up) x (height / step rounded up)
@@ -110,6 +110,17 @@ void fill_layers(const FrameContext& context, const IrradianceCache& static_cach
             extra[3] = albedo_over_pi * *E * float(pixel.samples);
 }
 
+void add_geometry(Hasher& h, const Geometry& geometry) {
+    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) {
+        for (const Vec3& p : mesh->positions) h.add(p);
+        for (const Vec3& n : mesh->normals) h.add(n);
+        for (const int index : mesh->indices) h.add(index);
+    } else {
+        h.add(std::get<Sphere>(geometry).center);
+        h.add(std::get<Sphere>(geometry).radius);
+    }
+}
+
 }  // namespace
 
 uint64_t static_inputs_hash(const Scene& scene, int first, int last, const LocalizedSettings& settings) {
@@ -119,18 +130,17 @@ uint64_t static_inputs_hash(const Scene& scene, int first, int last, const Local
     for (const int i : scene.static_objects()) {
         const ObjectDesc& object = scene.object(i);
         h.add(state.world_from_object[size_t(i)]);
-        if (const auto* mesh = std::get_if<TriangleMesh>(&object.geometry)) {
-            for (const Vec3& p : mesh->positions) h.add(p);
-            for (const Vec3& n : mesh->normals) h.add(n);
-            for (const int index : mesh->indices) h.add(index);
-        } else {
-            h.add(std::get<Sphere>(object.geometry).center);
-            h.add(std::get<Sphere>(object.geometry).radius);
-        }
+        add_geometry(h, object.geometry);
         const MaterialDesc& m = scene.desc().materials[size_t(object.material)];
         h.add(int(m.type)), h.add(m.reflectance), h.add(m.transmittance), h.add(m.ior), h.add(m.roughness);
         h.add(object.emission), h.add(object.two_sided_emission);
     }
+    // A moving emitter lights the static scene from where it is at the segment's start.
+    for (const int i : scene.dynamic_objects())
+        if (scene.object(i).is_emitter()) {
+            h.add(state.world_from_object[size_t(i)]), h.add(scene.object(i).emission);
+            add_geometry(h, scene.object(i).geometry);
+        }
     for (const PointLightDesc& light : scene.desc().point_lights) {
         h.add(int(light.type)), h.add(light.position), h.add(light.direction), h.add(light.intensity);
         h.add(light.cone_angle_deg), h.add(light.falloff_start_deg);

@@ -1,6 +1,7 @@
 #include "steadylight/integrators/localized.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <filesystem>
 
@@ -118,6 +119,16 @@ TEST(Localized, StaticRegionsAreBitIdenticalBetweenFrames) {
             if (x > a.width / 2 + 1) changed_in_left_room += !(a.at(x, y) == b.at(x, y));
         }
     EXPECT_GT(changed_in_left_room, 20);
+}
+
+TEST(Localized, SameFramesOnOneOrTwoThreads) {
+    const Scene scene = load("ball", 48, 36);
+    std::vector<LocalizedFrame> one, two;
+    tbb::task_arena(1).execute([&] { one = render(scene, {20}, small_settings()); });
+    tbb::task_arena(2).execute([&] { two = render(scene, {20}, small_settings()); });
+    EXPECT_TRUE(one[0].beauty.pixels == two[0].beauty.pixels);
+    EXPECT_TRUE(one[0].influence.pixels == two[0].influence.pixels);
+    EXPECT_EQ(one[0].stats.irradiance_records, two[0].stats.irradiance_records);
 }
 
 TEST(Localized, FrozenCacheRecomputesOnlyOnDynamicObjects) {
