@@ -155,12 +155,12 @@ RenderSummary render_animation(const RenderSettings& settings) {
     Progress progress(range.last - range.first + 1, settings.show_progress);
     RenderSummary summary;
     for (int frame = range.first; frame <= range.last; ++frame) {
-        const Clock::time_point frame_start = Clock::now();
         // Each segment's static pass runs (or is loaded) before its first frame.
         if (is_localized(settings) && solution_segment != &scene.segment_of(frame)) {
             solution_segment = &scene.segment_of(frame);
             solution = static_solution(settings, scene, tracer, *solution_segment);
         }
+        const Clock::time_point frame_start = Clock::now();
         const FrameState state = scene.evaluate(frame);
         tracer.set_frame(state);
         const LightSet lights(scene, state);
@@ -192,7 +192,8 @@ std::string describe_scene(const std::string& scene_file) {
     const Scene scene(load_scene_desc(scene_file));
     const SceneDesc& desc = scene.desc();
     std::string text = fmt::format("scene {} ({})\n", desc.name, scene_file);
-    text += fmt::format("frames: {} at {} fps ({:.2f} s)\n", desc.frame_count, desc.fps, desc.frame_count / desc.fps);
+    text += fmt::format("frames: {} at {} fps ({:.2f} s), {} segment(s)\n", desc.frame_count, desc.fps,
+                        desc.frame_count / desc.fps, scene.segments().size());
     text += fmt::format("camera: {}x{}, vertical fov {} deg{}\n", desc.camera.width, desc.camera.height,
                         desc.camera.fov_y_deg, is_chain_animated(desc.camera.placement) ? ", animated" : "");
     long triangles = 0;

@@ -168,6 +168,26 @@ TEST_F(SceneFiles, ZeroScaleIsAnError) {
     expect_error(write_scene(flat), {"floor", "singular"});
 }
 
+TEST_F(SceneFiles, SegmentsSplitTheAnimationWhereTheFileSays) {
+    const Scene scene(load_scene_desc(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [0, 4, 7])")));
+    ASSERT_EQ(scene.segments().size(), 3u);
+    EXPECT_EQ(scene.segments()[1].first, 4);
+    EXPECT_EQ(scene.segments()[1].last, 6);
+    EXPECT_EQ(scene.segment_of(9).first, 7);
+}
+
+TEST_F(SceneFiles, SegmentStartsMustIncreaseWithinTheAnimation) {
+    expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [5, 3])"), {"/segments", "increase"});
+    expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [12])"), {"/segments", "within"});
+}
+
+TEST_F(SceneFiles, MovingLightMakesEveryFrameItsOwnSegment) {
+    const std::string light = R"({"shape": {"type": "sphere", "radius": 0.1}, "emission": 5,
+        "animation": {"translation": {"times": [0, 1], "values": [[0,1,0],[1,1,0]]}}})";
+    const Scene scene(load_scene_desc(write_scene(light, R"(, "frames": {"count": 4, "fps": 4})")));
+    EXPECT_EQ(scene.segments().size(), 4u);
+}
+
 TEST_F(SceneFiles, MissingCameraIsAnError) {
     expect_error(write("nocam.json", R"({"objects": []})"), {"nocam.json:/camera", "missing"});
 }
