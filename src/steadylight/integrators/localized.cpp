@@ -238,7 +238,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     phase = Stopwatch();
     const IrradianceCache& static_cache = solution.cache;
     const IrradianceCache corrected = settings.frozen ? IrradianceCache(base.cache)
-                                                      : corrected_cache(static_cache, photons.dynamic, base.irradiance_estimate);
+                                                      : corrected_cache(static_cache, photons.dynamic, settings.correction_estimate);
     const IrradianceCache& transported = settings.frozen ? static_cache : corrected;
     stats.correction_s = phase.elapsed_s();
 

@@ -18,12 +18,16 @@ namespace steadylight {
 struct LocalizedSettings {
     PhotonMappingSettings base;   // photons (static and per frame alike), gathering, cache, shading
     int influence_photons = 300;  // N nearest dynamic photons in the influence estimate (paper: 300)
+    /// The dynamic map's estimate that corrects the static records (L_t). Many photons: a noisy
+    /// correction changes from frame to frame and flickers (k = 50 flickered more than the
+    /// photon method on TABLE; 300 flickers 25% less than it).
+    DensitySettings correction_estimate{.k = 300, .max_radius = 0.5f};
     int influence_step = 4;       // influence estimated at every n-th pixel centre in x and y (it is smooth)
     /// Thresholds on the influence relative to the static indirect irradiance there: below
     /// tau_lower L_t alone, above tau_upper L_y alone, smoothstep between (paper §3.3). Why these
     /// values: L_t's correction is a density estimate of the dynamic photons, whose noise is about
-    /// I / sqrt(k) for k photons (k = 50 here): at I = 0.3 that is ~4% of the static indirect
-    /// irradiance, at I = 1 ~14%, past which L_t cannot be trusted (docs/localized.md).
+    /// I / sqrt(k) for k photons (k = 300): at I = 0.3 that is ~2% of the static indirect
+    /// irradiance, at I = 1 ~6%, past which L_t cannot be trusted (docs/localized.md).
     float tau_lower = 0.3f;
     float tau_upper = 1.0f;
     bool frozen = false;          // the "frozen cache" baseline instead of the localized method
