@@ -211,14 +211,12 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     stats.static_records = solution.records;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
-    Stopwatch phase;
-    const TracedPhotons photons = trace_photons(context, base.photons);
-    const IrradiancePhotons irradiance(photons.global, base.irradiance_stride, base.irradiance_estimate);
-    stats.photon_tracing_s = phase.elapsed_s();
-    record_photon_counts(stats, photons, irradiance);
+    const FramePhotons traced = trace_frame_photons(context, base, stats);
+    const TracedPhotons& photons = traced.maps;
+    const IrradiancePhotons& irradiance = traced.irradiance;
 
     // Influence of the dynamic objects on each pixel's point.
-    phase = Stopwatch();
+    Stopwatch phase;
     const InfluenceMap influence = settings.frozen ? InfluenceMap{} : estimate_influence(context, photons.dynamic, solution.cache, settings);
     stats.influence_s = phase.elapsed_s();
 

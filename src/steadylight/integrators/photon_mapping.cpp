@@ -18,13 +18,18 @@ Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3
     return g.record.E;
 }
 
-void record_photon_counts(FrameStats& stats, const TracedPhotons& photons, const IrradiancePhotons& irradiance) {
+FramePhotons trace_frame_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats) {
+    const Stopwatch time;
+    TracedPhotons photons = trace_photons(context, settings.photons);
+    IrradiancePhotons irradiance(photons.global, settings.irradiance_stride, settings.irradiance_estimate);
+    stats.photon_tracing_s = time.elapsed_s();
     stats.global_photons_emitted = photons.global.emitted();
     stats.global_photons_stored = long(photons.global.size());
     stats.caustic_photons_emitted = photons.caustic.emitted();
     stats.caustic_photons_stored = long(photons.caustic.size());
     stats.dynamic_photons_stored = long(photons.dynamic.size());
     stats.irradiance_photons = long(irradiance.size());
+    return {std::move(photons), std::move(irradiance)};
 }
 
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings) {
@@ -35,14 +40,12 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.frame = context.frame.frame;
 
     // Pass 1: photons, and irradiance precomputed at a share of the global ones.
-    Stopwatch phase;
-    const TracedPhotons photons = trace_photons(context, settings.photons);
-    const IrradiancePhotons irradiance_photons(photons.global, settings.irradiance_stride, settings.irradiance_estimate);
-    stats.photon_tracing_s = phase.elapsed_s();
-    record_photon_counts(stats, photons, irradiance_photons);
+    const FramePhotons traced = trace_frame_photons(context, settings, stats);
+    const TracedPhotons& photons = traced.maps;
+    const IrradiancePhotons& irradiance_photons = traced.irradiance;
 
     // Pass 2a: the irradiance cache over the image, by final gathering.
-    phase = Stopwatch();
+    Stopwatch phase;
     IrradianceCache cache(settings.cache);
     const float max_radius = settings.irradiance_estimate.max_radius;
     const CacheBuildStats built = build_photon_cache(

@@ -33,8 +33,15 @@ struct PhotonFrame {
 
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings);
 
-/// Fills the photon counts of `stats` from a frame's photon maps.
-void record_photon_counts(FrameStats& stats, const TracedPhotons& photons, const IrradiancePhotons& irradiance);
+/// A frame's photon maps and the irradiance precomputed at a share of its global photons.
+struct FramePhotons {
+    TracedPhotons maps;
+    IrradiancePhotons irradiance;
+};
+
+/// The first pass of every photon-mapping method: traces the frame's photons, precomputes
+/// irradiance, and records the counts and the time in `stats`.
+FramePhotons trace_frame_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats);
 
 /// Moves the shading pass's common layers into a frame that has members of the same names.
 template <class FrameImages>
