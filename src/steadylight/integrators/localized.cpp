@@ -211,12 +211,14 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     stats.static_records = solution.records;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
-    const FramePhotons traced = trace_frame_photons(context, base, stats);
+    Stopwatch phase;
+    const FramePhotons traced(context, base, stats);
+    stats.photon_tracing_s = phase.elapsed_s();
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance = traced.irradiance;
 
     // Influence of the dynamic objects on each pixel's point.
-    Stopwatch phase;
+    phase = Stopwatch();
     const InfluenceMap influence = settings.frozen ? InfluenceMap{} : estimate_influence(context, photons.dynamic, solution.cache, settings);
     stats.influence_s = phase.elapsed_s();
 
@@ -266,6 +268,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     out.indirect_static = std::move(shaded.extra[3]);
     out.static_records = record_picture(context.frame.camera, static_cache.records());
     out.dynamic_records = record_picture(context.frame.camera, dynamic_cache.records());
+    stats.irradiance_photons = irradiance.computed();
     stats.total_s = total.elapsed_s();
     return out;
 }
