@@ -250,8 +250,11 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
         const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
         const float I = on_dynamic || influence.values.empty() ? 0.0f : influence.at(pixel.x, pixel.y);
         const float weight = on_dynamic ? 1.0f : (settings.frozen ? 0.0f : blend_weight(I, settings));
-        const Rgb L_y = weight > 0 ? cached_irradiance(dynamic_cache, sp, n, gather, fallbacks, gather_rays) : Rgb{};
-        const Rgb L_t = weight < 1 ? cached_irradiance(transported, sp, n, gather, fallbacks, gather_rays) : Rgb{};
+        const auto [L_y, L_t, unused] = remembered(pixel, sp, n, [&] {
+            return PixelMemo::Values{
+                weight > 0 ? cached_irradiance(dynamic_cache, sp, n, gather, fallbacks, gather_rays) : Rgb{},
+                weight < 1 ? cached_irradiance(transported, sp, n, gather, fallbacks, gather_rays) : Rgb{}, Rgb{}};
+        });
         if (extra) fill_layers(context, static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
         return L_y * weight + L_t * (1 - weight);
     };
