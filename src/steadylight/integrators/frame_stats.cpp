@@ -28,6 +28,30 @@ void to_json(nlohmann::json& json, const FrameStats& s) {
               {"total", s.total_s}}}};
 }
 
+void from_json(const nlohmann::json& json, FrameStats& s) {
+    json.at("method").get_to(s.method);
+    json.at("frame").get_to(s.frame);
+    const nlohmann::json& photons = json.at("photons");
+    photons.at("global_emitted").get_to(s.global_photons_emitted);
+    photons.at("global_stored").get_to(s.global_photons_stored);
+    photons.at("caustic_emitted").get_to(s.caustic_photons_emitted);
+    photons.at("caustic_stored").get_to(s.caustic_photons_stored);
+    photons.at("dynamic_stored").get_to(s.dynamic_photons_stored);
+    photons.at("irradiance_precomputed").get_to(s.irradiance_photons);
+    json.at("irradiance_records").get_to(s.irradiance_records);
+    json.at("static_records").get_to(s.static_records);
+    json.at("fallback_gathers").get_to(s.fallback_gathers);
+    json.at("gather_rays").get_to(s.gather_rays);
+    const nlohmann::json& seconds = json.at("seconds");
+    seconds.at("photon_tracing").get_to(s.photon_tracing_s);
+    seconds.at("cache").get_to(s.cache_s);
+    seconds.at("influence").get_to(s.influence_s);
+    seconds.at("correction").get_to(s.correction_s);
+    seconds.at("direct").get_to(s.direct_s);
+    seconds.at("caustics").get_to(s.caustics_s);
+    seconds.at("total").get_to(s.total_s);
+}
+
 std::string summarize(const FrameStats& s) {
     std::string text = fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M | photons {:.2f} s, cache {:.2f} s, ",
                                    s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
