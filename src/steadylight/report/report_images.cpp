@@ -32,8 +32,10 @@ bool has_rgb(const ExrLayerInfo& layer) {
     return has("R") && has("G") && has("B");
 }
 
+bool is_beauty(const std::string& layer_name) { return layer_name.empty() || layer_name == "beauty"; }
+
 std::string layer_figure(const std::string& exr_file, const ExrLayerInfo& layer) {
-    const std::string shown_name = layer.name.empty() ? "beauty" : layer.name;
+    const std::string shown_name = is_beauty(layer.name) ? "beauty" : layer.name;
     if (!has_rgb(layer)) {
         std::string channels;
         for (const std::string& channel : layer.channels) channels += (channels.empty() ? "" : ", ") + channel;
@@ -57,7 +59,10 @@ std::string scene_aovs(const std::string& scene, const std::vector<CatalogFrame>
     if (requested_frame && *requested_frame != frame.frame)
         html += fmt::format("<p>Frame {} has no EXR in this scene; showing frame {}.</p>\n", *requested_frame, frame.frame);
     html += "<div class=\"aovs\" data-scene=\"" + escape_html(scene) + "\">\n";
-    for (const ExrLayerInfo& layer : read_exr_layers(frame.exr_file)) html += layer_figure(frame.exr_file, layer);
+    // OpenEXR lists channels alphabetically; show the beauty first, whatever its name.
+    std::vector<ExrLayerInfo> layers = read_exr_layers(frame.exr_file);
+    std::stable_partition(layers.begin(), layers.end(), [](const ExrLayerInfo& l) { return is_beauty(l.name); });
+    for (const ExrLayerInfo& layer : layers) html += layer_figure(frame.exr_file, layer);
     return html + "</div>\n";
 }
 
