@@ -57,8 +57,9 @@ FrameCatalog load_frame_catalog(const std::string& out_dir) {
     if (!fs::is_directory(out_dir, error)) throw InputError(out_dir, "no such folder");
     // Collect the files per (scene, frame); the map keeps them sorted.
     std::map<std::pair<std::string, int>, CatalogFrame> found;
-    for (const fs::directory_entry& entry : fs::directory_iterator(out_dir))
-        if (entry.is_regular_file()) add_frame_file(found, entry.path());
+    for (fs::directory_iterator it(out_dir, error), end; !error && it != end; it.increment(error))
+        if (std::error_code ignored; it->is_regular_file(ignored)) add_frame_file(found, it->path());
+    if (error) throw InputError(out_dir, "cannot list the folder: " + error.message());
     if (found.empty())
         throw InputError(out_dir, "no frames found (expected <scene>_<frame:04>.exr, .png or .stats.json)");
     // Read the statistics of each frame.

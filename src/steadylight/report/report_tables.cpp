@@ -10,12 +10,14 @@ namespace steadylight {
 namespace {
 
 std::string format_number(double value) {
-    if (value != 0 && std::abs(value) < 10) return fmt::format("{:.3f}", value);
+    if (value == 0) return "0";
+    if (std::abs(value) < 10) return fmt::format("{:.3f}", value);
     return fmt::format("{:.1f}", value);
 }
 
+/// A ratio where both sides have something to compare (a phase one method lacks has none).
 std::string format_ratio(double numerator, double denominator) {
-    if (denominator == 0 || !std::isfinite(numerator / denominator)) return "&mdash;";
+    if (numerator == 0 || denominator == 0 || !std::isfinite(numerator / denominator)) return "&mdash;";
     return fmt::format("{:.2f}x", numerator / denominator);
 }
 

@@ -144,6 +144,8 @@ TEST(Report, TablesNameEachMethodAndCompareWithPhoton) {
     // Records: photon 5000.5, localized 175 a frame.
     EXPECT_NE(html.find("<th>irradiance records computed</th><td>5000.5</td><td>175.0</td><td>28.57x</td>"),
               std::string::npos);
+    // The photon method has no influence phase: nothing to compare.
+    EXPECT_NE(html.find("<th>influence (s)</th><td>0</td><td>0.100</td><td>&mdash;</td>"), std::string::npos);
 }
 
 TEST(Report, ScenesAreKeptApart) {
