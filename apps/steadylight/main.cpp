@@ -12,6 +12,7 @@
 
 #include "steadylight/base/error.h"
 #include "steadylight/render.h"
+#include "steadylight/report/report.h"
 
 using namespace steadylight;
 
@@ -113,6 +114,13 @@ int main(int argc, char** argv) {
     CLI::App* info = app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
     info->add_option("scene", info_scene, "Scene file (JSON)")->required();
 
+    ReportSettings report_settings;
+    CLI::App* report = app.add_subcommand("report", "Write one HTML page about the frames in a folder: "
+                                                    "summary tables, statistics plots, contact sheet, AOV layers");
+    report->add_option("outdir", report_settings.out_dir, "Folder that `render --out` wrote")->required();
+    report->add_option("--frame", report_settings.frame, "Frame whose AOV layers are shown (default: the middle one)");
+    report->add_option("--out", report_settings.html_file, "HTML file to write (default: OUTDIR/report.html)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -123,6 +131,10 @@ int main(int argc, char** argv) {
     try {
         if (*info) {
             std::fputs(describe_scene(info_scene).c_str(), stdout);
+            return 0;
+        }
+        if (*report) {
+            spdlog::info("report written to {}", write_report(report_settings));
             return 0;
         }
         finish_settings(raw, settings);

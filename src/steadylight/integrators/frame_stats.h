@@ -32,6 +32,9 @@ struct FrameStats {
 };
 
 void to_json(nlohmann::json& json, const FrameStats& stats);
+/// Reads what to_json wrote (`steadylight report`); throws nlohmann::json::exception when a field
+/// is missing or has the wrong type.
+void from_json(const nlohmann::json& json, FrameStats& stats);
 
 /// One line for the console: the phases and counts of the frame.
 std::string summarize(const FrameStats& stats);

@@ -18,13 +18,23 @@ void write_file_atomically(const std::string& path, const std::function<void(con
     }
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
+namespace {
+
+void write_bytes(const std::string& path, const char* data, size_t size) {
     write_file_atomically(path, [&](const std::string& file) {
         std::ofstream out(file, std::ios::binary);
-        out << text;
+        out.write(data, std::streamsize(size));
         out.close();
         if (!out) throw std::runtime_error("write failed");
     });
+}
+
+}  // namespace
+
+void write_text_file(const std::string& path, const std::string& text) { write_bytes(path, text.data(), text.size()); }
+
+void write_binary_file(const std::string& path, const std::vector<unsigned char>& bytes) {
+    write_bytes(path, reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
 }  // namespace steadylight

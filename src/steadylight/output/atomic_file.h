@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace steadylight {
 
@@ -13,5 +14,7 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::string& path, const std::string& text);
+/// Writes `bytes` to `path` atomically.
+void write_binary_file(const std::string& path, const std::vector<unsigned char>& bytes);
 
 }  // namespace steadylight

@@ -56,16 +56,23 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
 
 void write_exr(const std::string& path, const Image& image) { write_exr(path, {{"", &image}}); }
 
-void write_png(const std::string& path, const Image& image) {
-    write_file_atomically(path, [&](const std::string& file) {
-        std::vector<unsigned char> bytes(image.pixels.size() * 3);
-        for (size_t i = 0; i < image.pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-                bytes[3 * i + size_t(c)] = static_cast<unsigned char>(std::lround(255 * linear_to_srgb(image.pixels[i][c])));
-        if (!stbi_write_png(file.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3))
-            throw std::runtime_error("PNG encoder failed");
-    });
+std::vector<unsigned char> encode_png(const Image& image) {
+    std::vector<unsigned char> pixels(image.pixels.size() * 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            pixels[3 * i + size_t(c)] = static_cast<unsigned char>(std::lround(255 * linear_to_srgb(image.pixels[i][c])));
+    std::vector<unsigned char> png;
+    const auto append = [](void* context, void* data, int size) {
+        auto& out = *static_cast<std::vector<unsigned char>*>(context);
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        out.insert(out.end(), bytes, bytes + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, pixels.data(), image.width * 3))
+        throw std::runtime_error("PNG encoder failed");
+    return png;
 }
+
+void write_png(const std::string& path, const Image& image) { write_binary_file(path, encode_png(image)); }
 
 Image read_exr(const std::string& path, const std::string& layer) {
     try {
@@ -88,6 +95,25 @@ Image read_exr(const std::string& path, const std::string& layer) {
         for (size_t i = 0; i < image.pixels.size(); ++i)
             image.pixels[i] = {channels[0][i], channels[1][i], channels[2][i]};
         return image;
+    } catch (const std::exception& e) {
+        throw InputError(path, std::string("cannot read EXR: ") + e.what());
+    }
+}
+
+std::vector<ExrLayerInfo> read_exr_layers(const std::string& path) {
+    try {
+        Imf::InputFile in(path.c_str());
+        std::vector<ExrLayerInfo> layers;
+        const Imf::ChannelList& channels = in.header().channels();
+        for (auto channel = channels.begin(); channel != channels.end(); ++channel) {
+            const std::string full = channel.name();
+            const size_t dot = full.rfind('.');
+            const std::string layer = dot == std::string::npos ? "" : full.substr(0, dot);
+            auto found = std::find_if(layers.begin(), layers.end(), [&](const ExrLayerInfo& l) { return l.name == layer; });
+            if (found == layers.end()) found = layers.insert(layers.end(), {layer, {}});
+            found->channels.push_back(dot == std::string::npos ? full : full.substr(dot + 1));
+        }
+        return layers;
     } catch (const std::exception& e) {
         throw InputError(path, std::string("cannot read EXR: ") + e.what());
     }
