@@ -1,5 +1,6 @@
 #include "steadylight/integrators/photon_mapping.h"
 
+#include "steadylight/base/checkpoint.h"
 #include "steadylight/integrators/photon_gather.h"
 
 namespace steadylight {
@@ -19,6 +20,7 @@ Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3
 }
 
 FramePhotons trace_frame_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats) {
+    begin_phase("photons");
     const Stopwatch time;
     TracedPhotons photons = trace_photons(context, settings.photons);
     IrradiancePhotons irradiance(photons.global, settings.irradiance_stride, settings.irradiance_estimate);
@@ -45,6 +47,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     const IrradiancePhotons& irradiance_photons = traced.irradiance;
 
     // Pass 2a: the irradiance cache over the image, by final gathering.
+    begin_phase("irradiance cache");
     Stopwatch phase;
     IrradianceCache cache(settings.cache);
     const float max_radius = settings.irradiance_estimate.max_radius;
@@ -54,6 +57,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.irradiance_records = built.records_added;
 
     // Pass 2b: shade every pixel.
+    begin_phase("shading");
     phase = Stopwatch();
     const auto gather = make_point_gather(context, irradiance_photons, max_radius, settings.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
