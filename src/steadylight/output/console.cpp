@@ -61,10 +61,11 @@ private:
 std::shared_ptr<ConsoleSink> g_console_sink;
 
 spdlog::level::level_enum parse_level(const std::string& name) {
-    for (const auto level : {spdlog::level::trace, spdlog::level::debug, spdlog::level::info, spdlog::level::warn,
-                             spdlog::level::err})
-        if (name == (level == spdlog::level::err ? "error" : spdlog::level::to_string_view(level)))
-            return level;
+    using enum spdlog::level::level_enum;
+    const std::pair<const char*, spdlog::level::level_enum> levels[] = {
+        {"trace", trace}, {"debug", debug}, {"info", info}, {"warn", warn}, {"error", err}};
+    for (const auto& [level_name, level] : levels)
+        if (name == level_name) return level;
     throw InputError("--log-level", "unknown level \"" + name + "\" (trace, debug, info, warn, error)");
 }
 
@@ -109,7 +110,7 @@ void ConsoleProgress::begin_frame(int frame) {
         const std::lock_guard lock(m_mutex);
         m_frame = frame;
         m_phase.clear();
-        m_work_fraction = 0;
+        m_work_fraction = -1;
         m_frame_start = Clock::now();
     }
     redraw(true);
@@ -129,7 +130,7 @@ void ConsoleProgress::phase(std::string_view name) {
     {
         const std::lock_guard lock(m_mutex);
         m_phase = name;
-        m_work_fraction = 0;
+        m_work_fraction = -1;
     }
     redraw(true);
 }
@@ -149,17 +150,19 @@ std::string ConsoleProgress::status_line() {
     constexpr int width = 20;
     const double fraction = m_total_frames > 0 ? double(m_frames_done) / m_total_frames : 1.0;
     const int filled = std::clamp(int(fraction * width), 0, width);
-    std::string line = fmt::format("[{}{}] {}/{} frames", std::string(size_t(filled), '#'),
-                                   std::string(size_t(width - filled), '.'), m_frames_done, m_total_frames);
-    if (m_frame >= 0)
-        line += fmt::format("  frame {}: {} {:3.0f}%", m_frame, m_phase.empty() ? "starting" : m_phase, 100 * m_work_fraction);
     // ETA from the mean time of the finished frames, less what the current one has taken.
     std::string eta = "?";
     if (m_frames_done > 0) {
         const double current = m_frame >= 0 ? std::chrono::duration<double>(now - m_frame_start).count() : 0;
         eta = format_duration(m_frames_seconds / m_frames_done * (m_total_frames - m_frames_done) - current);
     }
-    return line + fmt::format("  {} elapsed, ETA {}", format_duration(elapsed), eta);
+    // The phase comes last: a narrow terminal cuts it off first.
+    std::string line = fmt::format("[{}{}] {}/{} frames  {} elapsed, ETA {}", std::string(size_t(filled), '#'),
+                                   std::string(size_t(width - filled), '.'), m_frames_done, m_total_frames,
+                                   format_duration(elapsed), eta);
+    if (m_frame >= 0) line += fmt::format("  frame {}: {}", m_frame, m_phase.empty() ? "starting" : m_phase);
+    if (m_frame >= 0 && m_work_fraction >= 0) line += fmt::format(" {:.0f}%", 100 * m_work_fraction);
+    return line;
 }
 
 void ConsoleProgress::redraw(bool force) {

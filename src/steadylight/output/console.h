@@ -51,7 +51,7 @@ private:
     int m_frames_done = 0;
     int m_frame = -1;
     std::string m_phase;
-    double m_work_fraction = 0;
+    double m_work_fraction = -1;  // of the phase's current parallel loop; -1 before the first report
     Clock::time_point m_start = Clock::now();
     Clock::time_point m_frame_start = m_start;
     Clock::time_point m_last_draw = m_start;
