@@ -32,7 +32,8 @@ void parse_size(const std::string& text, RenderSettings& settings) {
 
 /// Command-line values that need checking or converting after parsing.
 struct RawOptions {
-    std::string frames, size;
+    std::optional<std::string> frames;
+    std::string size;
     std::optional<int> spp;
     int threads = 0;
     int gather_samples = 0;
@@ -72,17 +73,17 @@ void add_console_options(CLI::App* command, LogOptions& log) {
 }
 
 /// What a render that stopped early says: what is finished and how to go on.
-void print_interrupted(const RenderSummary& summary) {
+void print_interrupted(const RenderSummary& summary, bool overwrite) {
     std::fprintf(stderr, "steadylight: interrupted; %zu frame(s) finished in this run%s%s, %zu left (%s).\n"
-                         "Run the same command again to resume: finished frames are skipped.\n",
+                         "Run the same command again%s to resume: finished frames are skipped.\n",
                  summary.frames_written.size(), summary.frames_written.empty() ? "" : ": ",
                  format_frame_list(summary.frames_written).c_str(), summary.frames_left.size(),
-                 format_frame_list(summary.frames_left).c_str());
+                 format_frame_list(summary.frames_left).c_str(), overwrite ? " without --overwrite" : "");
 }
 
 /// Checks and converts what add_method_options and the render options read.
 void finish_settings(const RawOptions& raw, RenderSettings& settings) {
-    if (!raw.frames.empty()) settings.frames = parse_frame_selection(raw.frames);
+    if (raw.frames) settings.frames = parse_frame_selection(*raw.frames);
     if (!raw.size.empty()) parse_size(raw.size, settings);
     if (raw.spp) settings.path.samples_per_pixel = settings.photon.shading.samples_per_pixel = *raw.spp;
     settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(raw.gather_samples / 2.0))));
@@ -163,7 +164,7 @@ int main(int argc, char** argv) {
         }
         const RenderSummary summary = render_animation(settings);
         if (summary.interrupted) {
-            print_interrupted(summary);
+            print_interrupted(summary, settings.overwrite);
             return 130;
         }
         spdlog::info("{} frame(s) written, {} complete ones skipped, in {} in {:.1f} s", summary.frames_written.size(),
