@@ -1,3 +1,4 @@
+// render_animation() across runs: resume, --overwrite, other settings, and Ctrl-C.
 #include "steadylight/render.h"
 
 #include <gtest/gtest.h>

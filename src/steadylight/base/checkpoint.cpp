@@ -1,3 +1,4 @@
+// The interrupt flag and the progress listener behind the render's checkpoints (checkpoint.h).
 #include "steadylight/base/checkpoint.h"
 
 #include <atomic>

@@ -1,3 +1,4 @@
+// Checkpoints: phases and parallel loops report progress, and an interrupt stops them.
 #include "steadylight/base/checkpoint.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// The console sink (log lines under a status line) and the progress bar (console.h).
 #include "steadylight/output/console.h"
 
 #include <sys/ioctl.h>

@@ -1,3 +1,4 @@
+// The progress bar's status line and durations.
 #include "steadylight/output/console.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Frame manifests: writing them last, and checking a frame's files against them (frame_manifest.h).
 #include "steadylight/output/frame_manifest.h"
 
 #include <filesystem>

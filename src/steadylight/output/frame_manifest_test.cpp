@@ -1,3 +1,4 @@
+// Resume logic: which frames count as complete, and why the others do not.
 #include "steadylight/output/frame_manifest.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Parsing `--frames` and expanding it against the scene (frame_selection.h).
 #include "steadylight/output/frame_selection.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// `--frames` parsing: valid lists, and errors that name the option and the bad part.
 #include "steadylight/output/frame_selection.h"
 
 #include <gtest/gtest.h>

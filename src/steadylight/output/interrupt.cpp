@@ -1,3 +1,4 @@
+// SIGINT/SIGTERM handlers and the test-only interrupt hook (interrupt.h).
 #include "steadylight/output/interrupt.h"
 
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// The settings file beside the frames: making it, and refusing other settings (settings_file.h).
 #include "steadylight/output/settings_file.h"
 
 #include <algorithm>

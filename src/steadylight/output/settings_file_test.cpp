@@ -1,3 +1,4 @@
+// The settings file: JSON round trip of the method settings, resume with same or other settings.
 #include "steadylight/output/settings_file.h"
 
 #include <gtest/gtest.h>
