@@ -1,5 +1,6 @@
 #include "steadylight/integrators/photon_mapping.h"
 
+#include "steadylight/base/checkpoint.h"
 #include "steadylight/integrators/photon_gather.h"
 
 namespace steadylight {
@@ -36,6 +37,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.frame = context.frame.frame;
 
     // Pass 1: photons (irradiance at a share of the global ones is computed as gathers need it).
+    begin_phase("photons");
     Stopwatch phase;
     const FramePhotons traced(context, settings, stats);
     stats.photon_tracing_s = phase.elapsed_s();
@@ -43,6 +45,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     const IrradiancePhotons& irradiance_photons = traced.irradiance;
 
     // Pass 2a: the irradiance cache over the image, by final gathering.
+    begin_phase("irradiance cache");
     phase = Stopwatch();
     IrradianceCache cache(settings.cache);
     const float max_radius = settings.irradiance_estimate.max_radius;
@@ -52,6 +55,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.irradiance_records = built.records_added;
 
     // Pass 2b: shade every pixel.
+    begin_phase("shading");
     phase = Stopwatch();
     const auto gather = make_point_gather(context, irradiance_photons, max_radius, settings.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
