@@ -3,7 +3,8 @@
 // irradiance records computed per frame, time for photon tracing, influence, L_y and L_t, the
 // relative RMSE of frozen and localized against the photon method, and temporal flicker (mean
 // absolute frame-to-frame change of luminance over the pixels no dynamic object ever covers,
-// relative to their mean luminance). Prints, asserts nothing.
+// relative to their mean luminance), split into the change of the direct light (the same in
+// every method: moving shadows) and of the indirect light. Prints, asserts nothing.
 // Run: build/animation_bench [--scenes ball,table] [--frames N] [--size WxH]
 #include <cmath>
 #include <cstdio>
@@ -40,8 +41,8 @@ Options parse(int argc, char** argv) {
 /// One method's figures summed over the frames.
 struct Totals {
     double records = 0, photon_s = 0, influence_s = 0, L_y_s = 0, L_t_s = 0, total_s = 0;
-    double rmse_vs_photon = 0, flicker = 0;
-    std::vector<Image> images;
+    double rmse_vs_photon = 0, flicker = 0, indirect_flicker = 0;
+    std::vector<Image> images, indirect;  // beauty, and indirect + caustic light
 
     void add(const FrameStats& s) {
         records += double(s.irradiance_records);
@@ -75,16 +76,31 @@ double relative_rmse(const Image& a, const Image& b) {
     return std::sqrt(sum2 / double(a.pixels.size())) / (sum / double(a.pixels.size()));
 }
 
-double flicker(const std::vector<Image>& images, const std::vector<bool>& covered) {
+/// Display-referred luminance, as the PNG shows it (unclamped, the light's pixels would dominate).
+double shown_luminance(Rgb c) { return std::min(1.0f, luminance(c)); }
+
+/// Mean absolute frame-to-frame change of luminance of `layers` over the pixels no dynamic
+/// object ever covers, relative to the mean shown luminance of `images` there. With layers =
+/// images this is the flicker of the picture; with a layer (direct, indirect) it is that part's
+/// share of it.
+double flicker(const std::vector<Image>& layers, const std::vector<Image>& images, const std::vector<bool>& covered,
+               bool shown) {
     double change = 0, level = 0;
-    long count = 0;
     for (size_t f = 1; f < images.size(); ++f)
         for (size_t i = 0; i < covered.size(); ++i) {
             if (covered[i]) continue;
-            const double now = std::min(1.0f, luminance(images[f].pixels[i])), before = std::min(1.0f, luminance(images[f - 1].pixels[i]));
-            change += std::abs(now - before), level += now, ++count;
+            const auto value = [&](const Image& image) {
+                return shown ? shown_luminance(image.pixels[i]) : double(luminance(image.pixels[i]));
+            };
+            change += std::abs(value(layers[f]) - value(layers[f - 1])), level += shown_luminance(images[f].pixels[i]);
         }
-    return count ? change / level : 0;
+    return level > 0 ? change / level : 0;
+}
+
+Image sum(const Image& a, const Image& b) {
+    Image out = a;
+    for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] += b.pixels[i];
+    return out;
 }
 
 void run_scene(const std::string& name, const Options& options) {
@@ -101,6 +117,7 @@ void run_scene(const std::string& name, const Options& options) {
     const StaticSolution solution = run_segment_pass(scene, tracer, 0, scene.frame_count() - 1, localized);
     const double static_s = static_time.elapsed_s();
     std::map<std::string, Totals> totals;
+    std::vector<Image> direct;  // the same in every method
     for (int f = 0; f < frames; ++f) {
         const FrameState state = scene.evaluate(f);
         tracer.set_frame(state);
@@ -114,6 +131,10 @@ void run_scene(const std::string& name, const Options& options) {
         totals["frozen"].add(freeze.stats);
         totals["localized"].rmse_vs_photon += relative_rmse(local.beauty, photon.beauty);
         totals["frozen"].rmse_vs_photon += relative_rmse(freeze.beauty, photon.beauty);
+        direct.push_back(std::move(photon.direct));
+        totals["photon"].indirect.push_back(sum(photon.indirect, photon.caustic));
+        totals["localized"].indirect.push_back(sum(local.indirect, local.caustic));
+        totals["frozen"].indirect.push_back(sum(freeze.indirect, freeze.caustic));
         totals["photon"].images.push_back(std::move(photon.beauty));
         totals["localized"].images.push_back(std::move(local.beauty));
         totals["frozen"].images.push_back(std::move(freeze.beauty));
@@ -121,7 +142,11 @@ void run_scene(const std::string& name, const Options& options) {
     }
     std::fprintf(stderr, "\n");
     const std::vector<bool> covered = dynamic_coverage(scene, tracer, frames);
-    for (auto& [method, t] : totals) t.flicker = flicker(t.images, covered);
+    for (auto& [method, t] : totals) {
+        t.flicker = flicker(t.images, t.images, covered, true);
+        t.indirect_flicker = flicker(t.indirect, t.images, covered, false);
+    }
+    const double direct_flicker = flicker(direct, totals["photon"].images, covered, false);
 
     std::printf("\n%s, %dx%d, %d frames; static pass %.2f s (%ld records)\n", name.c_str(), options.width, options.height,
                 frames, static_s, solution.records);
@@ -140,6 +165,10 @@ void run_scene(const std::string& name, const Options& options) {
     row("rel. RMSE vs photon", [](const Totals& t) { return t.rmse_vs_photon; });
     std::printf("%-24s %12.5f %12.5f %12.5f   (mean |dY| / mean Y over never-covered pixels)\n", "flicker",
                 totals["photon"].flicker, totals["frozen"].flicker, totals["localized"].flicker);
+    std::printf("%-24s %12.5f %12.5f %12.5f   (indirect + caustic layers' change, same scale)\n", "  of it indirect",
+                totals["photon"].indirect_flicker, totals["frozen"].indirect_flicker, totals["localized"].indirect_flicker);
+    std::printf("%-24s %12.5f %12.5f %12.5f   (direct layer's change: the same in every method)\n", "  of it direct",
+                direct_flicker, direct_flicker, direct_flicker);
     std::printf("%-24s %12.2f s (static pass + frames)\n", "localized animation",
                 static_s + totals["localized"].total_s);
 }

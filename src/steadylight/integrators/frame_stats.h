@@ -22,7 +22,8 @@ struct FrameStats {
     long static_records = 0;          // localized: records of the segment's static cache
     long fallback_gathers = 0;        // gathers at points the cache did not cover
     long gather_rays = 0;
-    double photon_tracing_s = 0;      // tracing the photon maps (irradiance at photons: in the gather phases)
+    double photon_tracing_s = 0;      // tracing the photon maps (photon: and precomputing irradiance at photons;
+                                      // localized computes it lazily, in the L_y phase)
     double cache_s = 0;               // building this frame's irradiance cache (localized: L_y)
     double influence_s = 0;           // localized: the influence I of the dynamic objects
     double correction_s = 0;          // localized: correcting the static records by the dynamic map (L_t)

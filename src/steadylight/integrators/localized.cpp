@@ -184,6 +184,7 @@ StaticSolution run_segment_pass(const Scene& scene, RayTracer& tracer, int first
     const auto bsdfs = make_bsdfs(scene);
     const PhotonMap static_photons = trace_photons({scene, state, tracer, lights, bsdfs}, base.photons, Visibility::static_only).global;
     const IrradiancePhotons irradiance(static_photons, base.irradiance_stride, base.irradiance_estimate);
+    irradiance.compute_all();  // the static cache covers every view
 
     // The static cache over every distinct camera view of the segment.
     begin_phase("static cache");

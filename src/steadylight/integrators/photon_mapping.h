@@ -1,6 +1,6 @@
 // Two-pass photon mapping with final gathering and an irradiance cache (Jensen 2001; the paper's
 // reference method, DESIGN.md §2.4), every frame from scratch:
-//   photon tracing (global and caustic maps) -> irradiance at photons, computed as needed (Christensen
+//   photon tracing (global and caustic maps) -> irradiance precomputed at photons (Christensen
 //   1999) -> irradiance cache over the image by final gathering -> per pixel
 //   L_r = L_d + L_i + L_c + L_s (shading_pass.h).
 // The localized method (paper §3, localized.h) reuses these pieces with a static cache.

@@ -72,6 +72,7 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance() * inv_pi;
     c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
+    if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
     const Stopwatch caustic_time;
     c.caustic = albedo_over_pi * m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate);
     m_caustic_ns += long(caustic_time.elapsed_s() * 1e9);

@@ -84,6 +84,12 @@ Rgb IrradiancePhotons::irradiance_at(uint32_t i) const {
     return E;
 }
 
+void IrradiancePhotons::compute_all() const {
+    parallel_for_chunks(long(m_E.size()), 256, [&](long begin, long end) {
+        for (long i = begin; i < end; ++i) irradiance_at(uint32_t(i));
+    });
+}
+
 std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) const {
     // Most look-ups are answered by the single nearest photon; only near creases and thin walls
     // does its normal disagree, and then the next few are tried.

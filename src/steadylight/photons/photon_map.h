@@ -47,7 +47,8 @@ private:
 
 /// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999), lazily:
 /// each value is computed the first time a look-up needs it, then kept. A frame of the localized
-/// method looks up only near its few L_y records, so most values are never needed. Thread-safe;
+/// method looks up only near its few L_y records, so most values are never needed (compute_all()
+/// when they all are). Thread-safe;
 /// values do not depend on which thread computes them first. The map must outlive this object
 /// and stay where it is.
 class IrradiancePhotons {
@@ -57,6 +58,9 @@ public:
     /// The irradiance of the nearest precomputed photon whose normal agrees with n, if any
     /// lies within `max_radius`.
     std::optional<Rgb> lookup(Vec3 p, Vec3 n, float max_radius) const;
+    /// Computes every value now, in parallel: faster than on demand when gathers will cover the
+    /// whole scene anyway (the photon method, the static pass), since photons are visited in order.
+    void compute_all() const;
     /// Photons that carry a precomputed value, and how many have been computed so far.
     size_t size() const { return m_E.size(); }
     long computed() const { return m_computed.load(); }

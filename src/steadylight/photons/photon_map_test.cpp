@@ -106,6 +106,9 @@ TEST(PhotonMap, IrradiancePhotonsComputeOnlyWhatIsLookedUp) {
     EXPECT_EQ(*E, map.estimate_irradiance(photon.p, photon.n, settings));
     EXPECT_EQ(irradiance.lookup(photon.p, {0, 1, 0}, 0.2f), E);
     EXPECT_EQ(irradiance.computed(), 1);
+    irradiance.compute_all();
+    EXPECT_EQ(irradiance.computed(), 1000);
+    EXPECT_EQ(irradiance.lookup(photon.p, {0, 1, 0}, 0.2f), E);
 }
 
 TEST(Halton, ComponentsAreInUnitIntervalAndEquidistributed) {
