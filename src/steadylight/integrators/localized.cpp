@@ -259,7 +259,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
         const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
         const float I = on_dynamic || influence.values.empty() ? 0.0f : influence.at(pixel.x, pixel.y);
         const float weight = on_dynamic ? 1.0f : (settings.frozen ? 0.0f : blend_weight(I, settings));
-        const auto [L_y, L_t, unused] = remembered(pixel, sp, n, [&] {
+        const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
             return PixelMemo::Values{
                 weight > 0 ? cached_irradiance(dynamic_cache, sp, n, gather, fallbacks, gather_rays) : Rgb{},
                 weight < 1 ? cached_irradiance(transported, sp, n, gather, fallbacks, gather_rays) : Rgb{}, Rgb{}};

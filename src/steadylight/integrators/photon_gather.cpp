@@ -42,11 +42,24 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
 
 std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y) {
     const Camera& camera = context.frame.camera;
-    const Ray ray = camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f);
-    const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
-    if (!hit || !context.bsdf_of(hit->object).is_diffuse()) return std::nullopt;
-    const SurfacePoint sp = face_towards(make_surface_point(context.scene, context.frame, ray, *hit), ray.d);
-    return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(hit->t), sp.object};
+    Ray ray = camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f);
+    float distance = 0;  // along the path: the pixel's footprint grows with it, mirrors or not
+    for (int depth = 0; depth <= max_specular_chain; ++depth) {
+        const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
+        if (!hit) return std::nullopt;
+        distance += hit->t;
+        const SurfacePoint sp = face_towards(make_surface_point(context.scene, context.frame, ray, *hit), ray.d);
+        const Bsdf& bsdf = context.bsdf_of(sp.object);
+        if (bsdf.is_diffuse()) return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(distance), sp.object};
+        if (!bsdf.is_delta()) return std::nullopt;
+        // Through glass along the refracted ray (the likelier branch, unless totally reflected),
+        // off mirrors along the reflected one.
+        const Frame frame = Frame::from_normal(sp.ns);
+        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-ray.d), {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
+        if (!bs) return std::nullopt;
+        ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+    }
+    return std::nullopt;
 }
 
 CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build) {

@@ -22,8 +22,13 @@ SurfacePoint face_towards(SurfacePoint sp, Vec3 d);
 GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
                               Visibility visibility, Ray ray);
 
-/// The diffuse surface point a pixel's centre sees directly (seeing what `visibility` allows),
-/// where its indirect irradiance is cached; std::nullopt for background and non-diffuse surfaces.
+/// Mirrors and glass followed from the camera to find a pixel's diffuse point.
+constexpr int max_specular_chain = 8;
+
+/// The diffuse surface point a pixel's centre sees (seeing what `visibility` allows), where its
+/// indirect irradiance is cached: directly, or through mirrors and glass (so that what the camera
+/// sees through them is cached too, instead of gathered anew by each camera ray that lands
+/// there); std::nullopt for background and glossy surfaces.
 std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y);
 
 /// Adds records to `cache` over the camera's image by final gathering against `photons`, at the

@@ -61,7 +61,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     const auto gather = make_point_gather(context, irradiance_photons, max_radius, settings.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     ShadedFrame shaded = shade_frame(context, settings.shading, photons.caustic, [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers*) {
-        return remembered(pixel, sp, n, [&] { return PixelMemo::Values{cached_irradiance(cache, sp, n, gather, fallbacks, gather_rays)}; })[0];
+        return remembered(pixel.memo, pixel.reach, sp, n, [&] { return PixelMemo::Values{cached_irradiance(cache, sp, n, gather, fallbacks, gather_rays)}; })[0];
     });
     stats.direct_s = phase.elapsed_s();
     stats.caustics_s = shaded.caustic_cpu_s;

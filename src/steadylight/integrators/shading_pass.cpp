@@ -74,7 +74,9 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
     const Stopwatch caustic_time;
-    c.caustic = albedo_over_pi * m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate);
+    c.caustic = albedo_over_pi * remembered(pixel.caustic_memo, pixel.reach, sp, sp.ng, [&] {
+        return PixelMemo::Values{m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate)};
+    })[0];
     m_caustic_ns += long(caustic_time.elapsed_s() * 1e9);
 }
 
@@ -96,8 +98,8 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
         PixelSample at = pixel;
         // Within a pixel the camera's rays spread over about one footprint; at grazing angles
         // over more, hence the factor 2.
-        at.footprint = 2 * m_context.frame.camera.pixel_footprint(hit->t);
-        if (depth > 0) at.memo = nullptr;
+        at.reach = 2 * m_context.frame.camera.pixel_footprint(hit->t);
+        if (depth > 0) at.memo = at.caustic_memo = nullptr;
         shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, rng, c);
         return c;
     }
@@ -146,12 +148,12 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                 const Vec2 shift = rng.next_vec2();
                 const LightStrata strata{0, uint32_t(n * settings.direct_samples), rng.next_vec2()};
                 Components sum;
-                PixelMemo memo;
+                PixelMemo memo, caustic_memo;
                 for (int s = 0; s < n; ++s) {
                     const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
                     const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
                     const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
-                    const Components c = shader.shade(ray, 0, true, {x, y, s, n, &memo}, ray_strata, rng);
+                    const Components c = shader.shade(ray, 0, true, {x, y, s, n, &memo, &caustic_memo}, ray_strata, rng);
                     if (!is_finite(c.sum())) continue;
                     sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
                     for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];

@@ -30,8 +30,9 @@ using ExtraLayers = std::array<Rgb, max_extra_layers>;
 /// Indirect irradiance found for a pixel's earlier camera rays, so that its later rays landing
 /// on the same surface close by can reuse it: the cache's indirect light varies over several
 /// pixels (records reach at least CacheSettings::min_spacing_px), so one look-up serves the
-/// pixel, and 16 camera rays cost about one look-up instead of 16. Rays hitting another object,
-/// or a surface turned by more than about 8 degrees (an edge, a crease), look up their own.
+/// pixel, and 16 camera rays cost about one look-up instead of 16 (the same holds for caustic
+/// estimates, whose radius spans many pixels). Rays hitting another object, or a surface turned
+/// by more than about 8 degrees (an edge, a crease), look up their own.
 class PixelMemo {
 public:
     using Values = std::array<Rgb, 3>;  // what the method needs to remember (e.g. L_y and L_t)
@@ -58,20 +59,22 @@ struct PixelSample {
     int x = 0, y = 0;
     int sample = 0;   // 0 .. samples_per_pixel - 1
     int samples = 1;
-    /// For points the camera sees directly: the pixel's memo and the world size of one pixel at
-    /// the point. Null (and 0) for points seen through mirrors and glass.
+    /// For points the camera sees directly: the method's memo for the pixel (the shading pass
+    /// keeps one of its own for caustics) and how far from its point a value may be reused (about
+    /// a pixel's world size there). Null for points seen through mirrors and glass.
     PixelMemo* memo = nullptr;
-    float footprint = 0;
+    PixelMemo* caustic_memo = nullptr;
+    float reach = 0;
 };
 
-/// The values `compute()` returns at (sp, n), or those a previous camera ray of the same pixel
-/// found close to sp.p on the same surface (see PixelMemo).
+/// The values `compute()` returns at (sp, n), or those an earlier camera ray of the same pixel
+/// found within `reach` of sp.p on the same surface (see PixelMemo). No memo: always compute().
 template <class Compute>
-PixelMemo::Values remembered(const PixelSample& pixel, const SurfacePoint& sp, Vec3 n, Compute&& compute) {
-    if (!pixel.memo) return compute();
-    if (const PixelMemo::Values* values = pixel.memo->find(sp, n, pixel.footprint)) return *values;
+PixelMemo::Values remembered(PixelMemo* memo, float reach, const SurfacePoint& sp, Vec3 n, Compute&& compute) {
+    if (!memo) return compute();
+    if (const PixelMemo::Values* values = memo->find(sp, n, reach)) return *values;
     const PixelMemo::Values values = compute();
-    pixel.memo->add(sp, n, values);
+    memo->add(sp, n, values);
     return values;
 }
 
