@@ -9,9 +9,11 @@
 
 #include "steadylight/base/error.h"
 #include "steadylight/output/atomic_file.h"
+#include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/progress.h"
+#include "steadylight/output/video.h"
 
 namespace steadylight {
 namespace {
@@ -112,16 +114,30 @@ RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& c
 }
 
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
-    std::vector<ExrLayer> layers{{"", &rendered.beauty}};
-    for (const auto& [name, image] : rendered.layers) layers.push_back({name, &image});
-    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"), layers);
-    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty);
+    const OutputSettings& output = settings.output;
+    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
+              frame_exr_layers(rendered.beauty, rendered.layers), output.exr_type);
+    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view);
     if (settings.aov_pngs)
         for (const auto& [name, image] : rendered.layers)
-            write_png(frame_file_name(settings.out_dir, scene.name(), frame, name + ".png"), image);
+            write_png(frame_file_name(settings.out_dir, scene.name(), frame, name + ".png"), image, output.view);
     if (rendered.stats)
         write_text_file(frame_file_name(settings.out_dir, scene.name(), frame, "stats.json"),
                         nlohmann::json(*rendered.stats).dump(2) + "\n");
+}
+
+std::vector<int> frame_list(const FrameRange& range) {
+    std::vector<int> frames;
+    for (int frame = range.first; frame <= range.last; ++frame) frames.push_back(frame);
+    return frames;
+}
+
+/// Encodes the frames' PNGs into `--video` (check_video_possible has accepted `frames`).
+void write_video(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames) {
+    const auto [first, last] = *contiguous_span(frames);
+    encode_video({.out_dir = settings.out_dir, .scene_name = scene.name(), .first_frame = first,
+                  .frame_count = last - first + 1, .fps = scene.desc().fps, .output = settings.output.video_file});
+    spdlog::info("video: {} frames at {} fps written to {}", last - first + 1, scene.desc().fps, settings.output.video_file);
 }
 
 }  // namespace
@@ -145,6 +161,8 @@ RenderSummary render_animation(const RenderSettings& settings) {
         throw InputError("--method", "unknown method \"" + settings.method + "\" (localized, photon, frozen, path)");
     const Scene scene = load_scene(settings);
     const FrameRange range = frames_to_render(settings, scene);
+    const std::vector<int> frames = frame_list(range);
+    if (!settings.output.video_file.empty()) check_video_possible(frames);  // before hours of rendering
     std::filesystem::create_directories(settings.out_dir);
 
     // Build the acceleration structures once; each frame only moves the dynamic objects.
@@ -172,6 +190,7 @@ RenderSummary render_animation(const RenderSettings& settings) {
                                           frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
                                           rendered.stats ? "\n  " + summarize(*rendered.stats) : ""));
     }
+    if (!settings.output.video_file.empty()) write_video(settings, scene, frames);
     summary.seconds = seconds_since(start);
     return summary;
 }
