@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     const FrameStats& s = frame.stats;
     const double photon_rmse = relative_rmse(frame.beauty, reference);
     std::printf("\nphoton mapping, BALL frame 0, 320x240, default settings\n");
-    std::printf("  photon tracing + irradiance precomputation  %7.3f s  (%ld global, %ld caustic photons stored)\n",
+    std::printf("  photon tracing                              %7.3f s  (%ld global, %ld caustic photons stored)\n",
                 s.photon_tracing_s, s.global_photons_stored, s.caustic_photons_stored);
     std::printf("  irradiance cache (final gathering)          %7.3f s  (%ld records, %.2fM gather rays)\n", s.cache_s,
                 s.irradiance_records, double(s.gather_rays) / 1e6);

@@ -1,5 +1,6 @@
 // The steadylight command line: parses flags into RenderSettings and calls the library.
-// Errors are caught once, here: the message goes to stderr and the exit code is 1.
+// Errors are caught once, here: the message goes to stderr and the exit code is 1; Ctrl-C ends
+// a render cleanly with exit code 130 (output/interrupt.h).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
@@ -10,8 +11,12 @@
 #include <memory>
 #include <regex>
 
+#include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
+#include "steadylight/output/console.h"
+#include "steadylight/output/interrupt.h"
 #include "steadylight/render.h"
+#include "steadylight/report/report.h"
 
 using namespace steadylight;
 
@@ -28,7 +33,8 @@ void parse_size(const std::string& text, RenderSettings& settings) {
 
 /// Command-line values that need checking or converting after parsing.
 struct RawOptions {
-    std::string frames, size;
+    std::optional<std::string> frames;
+    std::string size;
     std::optional<int> spp;
     int threads = 0;
     int gather_samples = 0;
@@ -74,9 +80,26 @@ void add_method_options(CLI::App* command, RenderSettings& settings, RawOptions&
     command->add_option("--cache-file", settings.cache_file, "static cache file (default: OUT/SCENE.irrcache)");
 }
 
+/// The console and resume options of `render` and `bake`.
+void add_console_options(CLI::App* command, LogOptions& log) {
+    command->add_flag("--quiet,-q", log.quiet, "Print errors only (no progress, no log lines)");
+    command->add_option("--log-level", log.level, "Console and log file detail")
+        ->capture_default_str()->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+    command->add_option("--log", log.file, "Also append the log to FILE");
+}
+
+/// What a render that stopped early says: what is finished and how to go on.
+void print_interrupted(const RenderSummary& summary, bool overwrite) {
+    std::fprintf(stderr, "steadylight: interrupted; %zu frame(s) finished in this run%s%s, %zu left (%s).\n"
+                         "Run the same command again%s to resume: finished frames are skipped.\n",
+                 summary.frames_written.size(), summary.frames_written.empty() ? "" : ": ",
+                 format_frame_list(summary.frames_written).c_str(), summary.frames_left.size(),
+                 format_frame_list(summary.frames_left).c_str(), overwrite ? " without --overwrite" : "");
+}
+
 /// Checks and converts what add_method_options and the render options read.
 void finish_settings(const RawOptions& raw, RenderSettings& settings) {
-    if (!raw.frames.empty()) settings.frames = parse_frame_range(raw.frames);
+    if (raw.frames) settings.frames = parse_frame_selection(*raw.frames);
     if (!raw.size.empty()) parse_size(raw.size, settings);
     settings.output.exr_type = parse_exr_pixel_type(raw.exr_type);
     settings.output.view.curve = parse_view_curve(raw.view_transform);
@@ -100,7 +123,8 @@ int main(int argc, char** argv) {
     RawOptions raw;
     CLI::App* render = app.add_subcommand("render", "Render the frames of a scene");
     add_method_options(render, settings, raw);
-    render->add_option("--frames", raw.frames, "Frame N or inclusive range A-B (default: all)");
+    render->add_option("--frames", raw.frames, "Frames: N, A-B, A-B:STEP or a comma list of them (default: all)");
+    render->add_flag("--overwrite", settings.overwrite, "Render frames again whose outputs are complete already");
     render->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
         ->check(CLI::Range(1, 1 << 20));
     render->add_option("--method,--integrator", settings.method,
@@ -126,10 +150,20 @@ int main(int argc, char** argv) {
 
     CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
     add_method_options(bake, settings, raw);
+    LogOptions log;
+    add_console_options(render, log);
+    add_console_options(bake, log);
 
     std::string info_scene;
     CLI::App* info = app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
     info->add_option("scene", info_scene, "Scene file (JSON)")->required();
+
+    ReportSettings report_settings;
+    CLI::App* report = app.add_subcommand("report", "Write one HTML page about the frames in a folder: "
+                                                    "summary tables, statistics plots, contact sheet, AOV layers");
+    report->add_option("outdir", report_settings.out_dir, "Folder that `render --out` wrote")->required();
+    report->add_option("--frame", report_settings.frame, "Frame whose AOV layers are shown (default: the middle one)");
+    report->add_option("--out", report_settings.html_file, "HTML file to write (default: OUTDIR/report.html)");
 
     try {
         app.parse(argc, argv);
@@ -143,7 +177,14 @@ int main(int argc, char** argv) {
             std::fputs(describe_scene(info_scene).c_str(), stdout);
             return 0;
         }
+        if (*report) {
+            spdlog::info("report written to {}", write_report(report_settings));
+            return 0;
+        }
+        setup_logging(log);
+        if (log.quiet) settings.show_progress = false;
         finish_settings(raw, settings);
+        install_interrupt_handlers();
         std::unique_ptr<tbb::global_control> thread_limit;
         if (raw.threads > 0)
             thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(raw.threads));
@@ -152,8 +193,16 @@ int main(int argc, char** argv) {
             return 0;
         }
         const RenderSummary summary = render_animation(settings);
-        spdlog::info("{} frame(s) written to {} in {:.1f} s", summary.frames_written, settings.out_dir, summary.seconds);
+        if (summary.interrupted) {
+            print_interrupted(summary, settings.overwrite);
+            return 130;
+        }
+        spdlog::info("{} frame(s) written, {} complete ones skipped, in {} in {:.1f} s", summary.frames_written.size(),
+                     summary.frames_skipped, settings.out_dir, summary.seconds);
         return 0;
+    } catch (const RenderInterrupted&) {
+        std::fputs("steadylight: interrupted\n", stderr);
+        return 130;
     } catch (const InputError& e) {
         std::fprintf(stderr, "steadylight: error: %s\n", e.what());
         return 1;

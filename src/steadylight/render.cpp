@@ -1,18 +1,23 @@
 #include "steadylight/render.h"
 
 #include <chrono>
+#include <csignal>
 #include <filesystem>
-#include <regex>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
 
+#include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
 #include "steadylight/output/atomic_file.h"
+#include "steadylight/output/console.h"
 #include "steadylight/output/frame_layers.h"
+#include "steadylight/output/frame_manifest.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
-#include "steadylight/output/progress.h"
+#include "steadylight/output/interrupt.h"
+#include "steadylight/output/settings_file.h"
 #include "steadylight/output/video.h"
 
 namespace steadylight {
@@ -29,14 +34,6 @@ Scene load_scene(const RenderSettings& settings) {
     const SceneDesc& desc = scene.desc();
     scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
     return scene;
-}
-
-FrameRange frames_to_render(const RenderSettings& settings, const Scene& scene) {
-    const FrameRange range = settings.frames.value_or(FrameRange{0, scene.frame_count() - 1});
-    if (range.last >= scene.frame_count())
-        throw InputError("--frames", fmt::format("frame {} is past the scene's last frame {}", range.last,
-                                                 scene.frame_count() - 1));
-    return range;
 }
 
 /// A finished frame: the image, its layers for the EXR, and statistics when the method has any.
@@ -97,11 +94,8 @@ RenderedFrame render_localized_frame(const RenderSettings& settings, const Frame
             frame.stats};
 }
 
-RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& context, Progress& progress,
-                           const StaticSolution* solution) {
-    if (settings.method == "path")
-        return {render_path_traced(context, settings.path, [&](int done, int total) { progress.update_frame(done, total); }),
-                {}, std::nullopt};
+RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& context, const StaticSolution* solution) {
+    if (settings.method == "path") return {render_path_traced(context, settings.path), {}, std::nullopt};
     if (solution) return render_localized_frame(settings, context, *solution);
     PhotonFrame frame = render_photon_mapped(context, settings.photon);
     return {frame.beauty,
@@ -126,13 +120,8 @@ void write_frame(const RenderSettings& settings, const Scene& scene, int frame, 
                         nlohmann::json(*rendered.stats).dump(2) + "\n");
 }
 
-std::vector<int> frame_list(const FrameRange& range) {
-    std::vector<int> frames;
-    for (int frame = range.first; frame <= range.last; ++frame) frames.push_back(frame);
-    return frames;
-}
-
-/// Encodes the frames' PNGs into `--video` (check_video_possible has accepted `frames`).
+/// Encodes the PNGs of the selected frames into `--video` (check_video_possible has accepted
+/// `frames`). Frames skipped as complete from an earlier run have their PNGs already.
 void write_video(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames) {
     const auto [first, last] = *contiguous_span(frames);
     encode_video({.out_dir = settings.out_dir, .scene_name = scene.name(), .first_frame = first,
@@ -140,57 +129,102 @@ void write_video(const RenderSettings& settings, const Scene& scene, const std::
     spdlog::info("video: {} frames at {} fps written to {}", last - first + 1, scene.desc().fps, settings.output.video_file);
 }
 
-}  // namespace
-
-FrameRange parse_frame_range(const std::string& text) {
-    static const std::regex pattern(R"(\s*(\d+)\s*(?:-\s*(\d+)\s*)?)");
-    std::smatch match;
-    if (!std::regex_match(text, match, pattern) || match[1].length() > 9 || match[2].length() > 9)
-        throw InputError("--frames", "expected a frame number N or a range A-B, got \"" + text + "\"");
-    FrameRange range;
-    range.first = std::stoi(match[1]);
-    range.last = match[2].matched ? std::stoi(match[2]) : range.first;
-    if (range.last < range.first)
-        throw InputError("--frames", "range \"" + text + "\" ends before it starts");
-    return range;
+/// Writes `<out>/<scene>.settings.json` (an InputError if an earlier run used other settings,
+/// unless --overwrite) and returns the settings key that frame manifests carry.
+std::string record_settings(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames) {
+    const Camera camera = scene.evaluate(0).camera;
+    const RunInfo run{scene.name(), camera.width, camera.height, frames,
+                      int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))};
+    const nlohmann::json json = make_settings_json(settings, run);
+    write_settings_file(settings_file_name(settings.out_dir, scene.name()), json, settings.overwrite);
+    return settings_key(json);
 }
+
+/// The selected frames whose outputs are not complete yet (all of them with --overwrite).
+std::vector<int> frames_to_render(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
+                                  const std::string& key, RenderSummary& summary) {
+    if (settings.overwrite) return frames;
+    std::vector<int> todo, complete;
+    for (const int frame : frames) {
+        const FrameCheck check = check_frame_outputs(settings.out_dir, scene.name(), frame, key);
+        (check.complete ? complete : todo).push_back(frame);
+        if (!check.problem.empty()) spdlog::info("frame {}: rendering it again: {}", frame, check.problem);
+    }
+    if (!complete.empty())
+        spdlog::info("{} frame(s) complete from an earlier run, skipped: {} (--overwrite renders them again)",
+                     complete.size(), format_frame_list(complete));
+    summary.frames_skipped = int(complete.size());
+    return todo;
+}
+
+/// write_frame, then the frame's manifest, which lists what write_frame wrote (last, so that a
+/// frame cut short has none).
+void write_frame_outputs(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered,
+                         const std::string& key) {
+    std::error_code ignored;
+    std::filesystem::remove(frame_manifest_name(settings.out_dir, scene.name(), frame), ignored);
+    const WrittenFiles written;
+    write_frame(settings, scene, frame, rendered);
+    write_frame_manifest(settings.out_dir, scene.name(), frame, written.paths(), key);
+}
+
+/// Renders and writes `frames` (sorted) in order, adding each to `summary` when written.
+/// Throws RenderInterrupted at the first checkpoint after Ctrl-C.
+void render_frames(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
+                   const std::string& key, RenderSummary& summary) {
+    if (frames.empty()) return;
+    // Build the acceleration structures once; each frame only moves the dynamic objects.
+    RayTracer tracer(scene, scene.evaluate(frames.front()));
+    const auto bsdfs = make_bsdfs(scene);
+    std::optional<StaticSolution> solution;
+    const Segment* solution_segment = nullptr;
+    ConsoleProgress progress(int(frames.size()), settings.show_progress);
+    const ScopedCheckpointListener listening(&progress);
+    const std::optional<int> interrupt_after = test_interrupt_after_frames();
+    for (const int frame : frames) {
+        progress.begin_frame(frame);
+        // Each segment's static pass runs (or is loaded) before its first selected frame.
+        if (is_localized(settings) && solution_segment != &scene.segment_of(frame)) {
+            solution_segment = &scene.segment_of(frame);
+            solution = static_solution(settings, scene, tracer, *solution_segment);
+        }
+        if (interrupt_after == int(summary.frames_written.size())) std::raise(SIGINT);
+        const Clock::time_point frame_start = Clock::now();
+        const FrameState state = scene.evaluate(frame);
+        tracer.set_frame(state);
+        const LightSet lights(scene, state);
+        const FrameContext context{scene, state, tracer, lights, bsdfs};
+        const RenderedFrame rendered = render_frame(settings, context, solution ? &*solution : nullptr);
+        write_frame_outputs(settings, scene, frame, rendered, key);
+        summary.frames_written.push_back(frame);
+        progress.finish_frame();
+        spdlog::info("frame {:4d}  {:7.2f} s  {}{}", frame, seconds_since(frame_start),
+                     frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
+                     rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
+    }
+}
+
+}  // namespace
 
 RenderSummary render_animation(const RenderSettings& settings) {
     const Clock::time_point start = Clock::now();
     if (settings.method != "path" && settings.method != "photon" && !is_localized(settings))
         throw InputError("--method", "unknown method \"" + settings.method + "\" (localized, photon, frozen, path)");
     const Scene scene = load_scene(settings);
-    const FrameRange range = frames_to_render(settings, scene);
-    const std::vector<int> frames = frame_list(range);
+    const std::vector<int> frames = select_frames(settings.frames, scene.frame_count());
     if (!settings.output.video_file.empty()) check_video_possible(frames);  // before hours of rendering
     std::filesystem::create_directories(settings.out_dir);
-
-    // Build the acceleration structures once; each frame only moves the dynamic objects.
-    RayTracer tracer(scene, scene.evaluate(range.first));
-    const auto bsdfs = make_bsdfs(scene);
-    std::optional<StaticSolution> solution;
-    const Segment* solution_segment = nullptr;
-    Progress progress(range.last - range.first + 1, settings.show_progress);
+    const std::string key = record_settings(settings, scene, frames);
     RenderSummary summary;
-    for (int frame = range.first; frame <= range.last; ++frame) {
-        // Each segment's static pass runs (or is loaded) before its first frame.
-        if (is_localized(settings) && solution_segment != &scene.segment_of(frame)) {
-            solution_segment = &scene.segment_of(frame);
-            solution = static_solution(settings, scene, tracer, *solution_segment);
-        }
-        const Clock::time_point frame_start = Clock::now();
-        const FrameState state = scene.evaluate(frame);
-        tracer.set_frame(state);
-        const LightSet lights(scene, state);
-        const FrameContext context{scene, state, tracer, lights, bsdfs};
-        const RenderedFrame rendered = render_frame(settings, context, progress, solution ? &*solution : nullptr);
-        write_frame(settings, scene, frame, rendered);
-        ++summary.frames_written;
-        progress.finish_frame(fmt::format("frame {:4d}  {:7.2f} s  {}{}", frame, seconds_since(frame_start),
-                                          frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
-                                          rendered.stats ? "\n  " + summarize(*rendered.stats) : ""));
+    const std::vector<int> todo = frames_to_render(settings, scene, frames, key, summary);
+    try {
+        render_frames(settings, scene, todo, key, summary);
+    } catch (const RenderInterrupted&) {
+        summary.interrupted = true;
     }
-    if (!settings.output.video_file.empty()) write_video(settings, scene, frames);
+    summary.frames_left.assign(todo.begin() + long(summary.frames_written.size()), todo.end());
+    // The video needs every selected frame: after an interrupt, the resumed run makes it.
+    if (!settings.output.video_file.empty() && !summary.interrupted) write_video(settings, scene, frames);
     summary.seconds = seconds_since(start);
     return summary;
 }

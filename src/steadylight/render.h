@@ -9,22 +9,16 @@
 #include "steadylight/integrators/path_tracer.h"
 #include "steadylight/integrators/localized.h"
 #include "steadylight/integrators/photon_mapping.h"
+#include "steadylight/output/frame_selection.h"
 #include "steadylight/output/output_settings.h"
 
 namespace steadylight {
 
-struct FrameRange {
-    int first = 0;
-    int last = 0;  // inclusive
-};
-
-/// Parses "N" or "A-B" (inclusive). Throws InputError for anything else or for B < A.
-FrameRange parse_frame_range(const std::string& text);
-
 struct RenderSettings {
     std::string scene_file;
     std::string out_dir = "out";
-    std::optional<FrameRange> frames;  // default: every frame of the scene
+    FrameSelection frames;              // default (no spans): every frame of the scene
+    bool overwrite = false;             // render frames again whose outputs are complete already
     std::optional<int> width, height;  // default: the scene camera's resolution
     /// "localized" (the paper's method), "photon" (photon mapping every frame from scratch, the
     /// paper's reference), "frozen" (static cache reused as it is) or "path" (ground truth).
@@ -39,12 +33,18 @@ struct RenderSettings {
 };
 
 struct RenderSummary {
-    int frames_written = 0;
+    std::vector<int> frames_written;  // by this run
+    int frames_skipped = 0;           // complete from an earlier run (output/frame_manifest.h)
+    std::vector<int> frames_left;     // selected but not written: after an interrupt
+    bool interrupted = false;         // stopped by Ctrl-C (base/checkpoint.h)
     double seconds = 0;
 };
 
-/// Renders the frames and writes `<out>/<scene>_<frame:04>.exr` (with AOV layers) and `.png`
-/// for each, and for photon mapping `<scene>_<frame:04>.stats.json`.
+/// Renders the selected frames and writes `<out>/<scene>_<frame:04>.exr` (with AOV layers) and
+/// `.png` for each, for photon mapping `<scene>_<frame:04>.stats.json`, then the frame's
+/// manifest; and `<out>/<scene>.settings.json` before the first frame. Frames whose outputs are
+/// complete are skipped unless `settings.overwrite`. An interrupt stops it at the next
+/// checkpoint: the frame in progress is dropped and the summary says so.
 RenderSummary render_animation(const RenderSettings& settings);
 
 /// Runs the segment pass of the localized method for every segment and writes the static cache

@@ -13,17 +13,19 @@ expect_files() {  # expect_files DIR FILE...
 
 rm -rf "$out"
 "$binary" render "$source/scenes/ball.json" --method path --frames 3-4 --spp 1 --size 16x12 --out "$out/path" --no-progress
-expect_files "$out/path" ball_0003.exr ball_0003.png ball_0004.exr ball_0004.png
+expect_files "$out/path" ball.settings.json ball_0003.exr ball_0003.png ball_0003.manifest.json \
+  ball_0004.exr ball_0004.png ball_0004.manifest.json
 
 small=(--frames 3-4 --spp 1 --size 16x12 --photons 5000 --caustic-photons 0 --gather-samples 32 --no-progress)
 "$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized"
-expect_files "$out/localized" ball.irrcache ball_0003.exr ball_0003.png ball_0003.stats.json \
-  ball_0004.exr ball_0004.png ball_0004.stats.json
-"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized" 2>&1 | tee "$out/second.log"
+expect_files "$out/localized" ball.irrcache ball.settings.json ball_0003.exr ball_0003.png ball_0003.stats.json \
+  ball_0003.manifest.json ball_0004.exr ball_0004.png ball_0004.stats.json ball_0004.manifest.json
+# (--overwrite: the frames are complete, and a resumed run would skip them.)
+"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized" --overwrite 2>&1 | tee "$out/second.log"
 grep -q "records loaded from" "$out/second.log" || { echo "the second run did not load the static cache"; exit 1; }
 # A damaged cache file is rejected, recomputed and replaced: never a crash or a wrong picture.
 head -c 100 "$out/localized/ball.irrcache" > "$out/cut" && mv "$out/cut" "$out/localized/ball.irrcache"
-"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized" 2>&1 | tee "$out/third.log"
+"$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized" --overwrite 2>&1 | tee "$out/third.log"
 grep -q "computed in .*truncated" "$out/third.log" || { echo "the truncated cache was not recomputed"; exit 1; }
 # bake writes the cache a later render then loads.
 "$binary" bake "$source/scenes/ball.json" --size 16x12 --photons 5000 --gather-samples 32 --out "$out/baked"

@@ -1,5 +1,7 @@
 // The renderer's parallel loops, over oneTBB. Work is split by index only, so results never
-// depend on how many threads run or how TBB schedules them.
+// depend on how many threads run or how TBB schedules them. Every tile and chunk is a checkpoint
+// (base/checkpoint.h): it reports progress, and after an interrupt the loop throws
+// RenderInterrupted instead of running the rest.
 #pragma once
 
 #include <functional>

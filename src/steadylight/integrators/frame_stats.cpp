@@ -4,28 +4,42 @@
 
 namespace steadylight {
 
+namespace {
+
+/// Calls `visit(json_pointer, member)` for every field, so that writing and reading the JSON
+/// file cannot drift apart.
+template <typename Stats, typename Visit>
+void for_each_json_field(Stats& s, Visit&& visit) {
+    visit("/method", s.method);
+    visit("/frame", s.frame);
+    visit("/photons/global_emitted", s.global_photons_emitted);
+    visit("/photons/global_stored", s.global_photons_stored);
+    visit("/photons/caustic_emitted", s.caustic_photons_emitted);
+    visit("/photons/caustic_stored", s.caustic_photons_stored);
+    visit("/photons/dynamic_stored", s.dynamic_photons_stored);
+    visit("/photons/irradiance_precomputed", s.irradiance_photons);
+    visit("/irradiance_records", s.irradiance_records);
+    visit("/static_records", s.static_records);
+    visit("/fallback_gathers", s.fallback_gathers);
+    visit("/gather_rays", s.gather_rays);
+    visit("/seconds/photon_tracing", s.photon_tracing_s);
+    visit("/seconds/cache", s.cache_s);
+    visit("/seconds/influence", s.influence_s);
+    visit("/seconds/correction", s.correction_s);
+    visit("/seconds/direct", s.direct_s);
+    visit("/seconds/caustics", s.caustics_s);
+    visit("/seconds/total", s.total_s);
+}
+
+}  // namespace
+
 void to_json(nlohmann::json& json, const FrameStats& s) {
-    json = {{"method", s.method},
-            {"frame", s.frame},
-            {"photons",
-             {{"global_emitted", s.global_photons_emitted},
-              {"global_stored", s.global_photons_stored},
-              {"caustic_emitted", s.caustic_photons_emitted},
-              {"caustic_stored", s.caustic_photons_stored},
-              {"dynamic_stored", s.dynamic_photons_stored},
-              {"irradiance_precomputed", s.irradiance_photons}}},
-            {"irradiance_records", s.irradiance_records},
-            {"static_records", s.static_records},
-            {"fallback_gathers", s.fallback_gathers},
-            {"gather_rays", s.gather_rays},
-            {"seconds",
-             {{"photon_tracing", s.photon_tracing_s},
-              {"cache", s.cache_s},
-              {"influence", s.influence_s},
-              {"correction", s.correction_s},
-              {"direct", s.direct_s},
-              {"caustics", s.caustics_s},
-              {"total", s.total_s}}}};
+    json = nlohmann::json::object();
+    for_each_json_field(s, [&](const char* pointer, const auto& value) { json[nlohmann::json::json_pointer(pointer)] = value; });
+}
+
+void from_json(const nlohmann::json& json, FrameStats& s) {
+    for_each_json_field(s, [&](const char* pointer, auto& value) { json.at(nlohmann::json::json_pointer(pointer)).get_to(value); });
 }
 
 std::string summarize(const FrameStats& s) {

@@ -17,12 +17,12 @@ struct FrameStats {
     long caustic_photons_emitted = 0;
     long caustic_photons_stored = 0;
     long dynamic_photons_stored = 0;  // localized: positive and negative photons of the dynamic map
-    long irradiance_photons = 0;
+    long irradiance_photons = 0;      // photons whose irradiance was computed (lazily, for gathers)
     long irradiance_records = 0;      // computed for this frame (localized: the dynamic cache, L_y)
     long static_records = 0;          // localized: records of the segment's static cache
     long fallback_gathers = 0;        // gathers at points the cache did not cover
     long gather_rays = 0;
-    double photon_tracing_s = 0;      // tracing both maps and precomputing irradiance
+    double photon_tracing_s = 0;      // tracing the photon maps (irradiance at photons: in the gather phases)
     double cache_s = 0;               // building this frame's irradiance cache (localized: L_y)
     double influence_s = 0;           // localized: the influence I of the dynamic objects
     double correction_s = 0;          // localized: correcting the static records by the dynamic map (L_t)
@@ -32,6 +32,9 @@ struct FrameStats {
 };
 
 void to_json(nlohmann::json& json, const FrameStats& stats);
+/// Reads what to_json wrote (`steadylight report`); throws nlohmann::json::exception when a field
+/// is missing or has the wrong type.
+void from_json(const nlohmann::json& json, FrameStats& stats);
 
 /// One line for the console: the phases and counts of the frame.
 std::string summarize(const FrameStats& stats);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "steadylight/base/checkpoint.h"
 #include "steadylight/base/hash.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/integrators/photon_gather.h"
@@ -176,6 +177,7 @@ StaticSolution run_segment_pass(const Scene& scene, RayTracer& tracer, int first
     const PhotonMappingSettings& base = settings.base;
 
     // Static photons: the complete scene's photon paths with the dynamic objects removed.
+    begin_phase("static photons");
     FrameState state = scene.evaluate(first);
     tracer.set_frame(state);
     LightSet lights(scene, state);
@@ -184,6 +186,7 @@ StaticSolution run_segment_pass(const Scene& scene, RayTracer& tracer, int first
     const IrradiancePhotons irradiance(static_photons, base.irradiance_stride, base.irradiance_estimate);
 
     // The static cache over every distinct camera view of the segment.
+    begin_phase("static cache");
     std::vector<Camera> views;
     for (int frame = first; frame <= last; ++frame) {
         state = scene.evaluate(frame);
@@ -211,16 +214,21 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     stats.static_records = solution.records;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
-    const FramePhotons traced = trace_frame_photons(context, base, stats);
+    begin_phase("photons");
+    Stopwatch phase;
+    const FramePhotons traced(context, base, stats);
+    stats.photon_tracing_s = phase.elapsed_s();
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance = traced.irradiance;
 
     // Influence of the dynamic objects on each pixel's point.
-    Stopwatch phase;
+    begin_phase("influence");
+    phase = Stopwatch();
     const InfluenceMap influence = settings.frozen ? InfluenceMap{} : estimate_influence(context, photons.dynamic, solution.cache, settings);
     stats.influence_s = phase.elapsed_s();
 
     // L_y: the dynamic cache, only where the influence is felt and on dynamic objects.
+    begin_phase("L_y");
     phase = Stopwatch();
     IrradianceCache dynamic_cache(base.cache);
     const float max_radius = base.irradiance_estimate.max_radius;
@@ -233,6 +241,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     stats.irradiance_records = built.records_added;
 
     // L_t: the static records corrected by the dynamic map.
+    begin_phase("L_t");
     phase = Stopwatch();
     const IrradianceCache& static_cache = solution.cache;
     const IrradianceCache corrected = settings.frozen ? IrradianceCache(base.cache)
@@ -241,6 +250,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     stats.correction_s = phase.elapsed_s();
 
     // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects.
+    begin_phase("shading");
     phase = Stopwatch();
     const auto gather = make_point_gather(context, irradiance, max_radius, base.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
@@ -248,8 +258,11 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
         const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
         const float I = on_dynamic || influence.values.empty() ? 0.0f : influence.at(pixel.x, pixel.y);
         const float weight = on_dynamic ? 1.0f : (settings.frozen ? 0.0f : blend_weight(I, settings));
-        const Rgb L_y = weight > 0 ? cached_irradiance(dynamic_cache, sp, n, gather, fallbacks, gather_rays) : Rgb{};
-        const Rgb L_t = weight < 1 ? cached_irradiance(transported, sp, n, gather, fallbacks, gather_rays) : Rgb{};
+        const auto [L_y, L_t, unused] = remembered(pixel, sp, n, [&] {
+            return PixelMemo::Values{
+                weight > 0 ? cached_irradiance(dynamic_cache, sp, n, gather, fallbacks, gather_rays) : Rgb{},
+                weight < 1 ? cached_irradiance(transported, sp, n, gather, fallbacks, gather_rays) : Rgb{}, Rgb{}};
+        });
         if (extra) fill_layers(context, static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
         return L_y * weight + L_t * (1 - weight);
     };
@@ -266,6 +279,7 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     out.indirect_static = std::move(shaded.extra[3]);
     out.static_records = record_picture(context.frame.camera, static_cache.records());
     out.dynamic_records = record_picture(context.frame.camera, dynamic_cache.records());
+    stats.irradiance_photons = irradiance.computed();
     stats.total_s = total.elapsed_s();
     return out;
 }

@@ -2,6 +2,7 @@
 
 #include <atomic>
 
+#include "steadylight/base/checkpoint.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/sampling.h"
 #include "steadylight/shading/surface_point.h"
@@ -77,6 +78,7 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
 
 Image render_path_traced(const FrameContext& context, const PathTracerSettings& settings,
                          const TileProgress& progress) {
+    begin_phase("path tracing");
     const Camera& camera = context.frame.camera;
     Image image(camera.width, camera.height);
     const int tiles = ((camera.width + tile_size - 1) / tile_size) * ((camera.height + tile_size - 1) / tile_size);

@@ -1,5 +1,6 @@
 #include "steadylight/integrators/photon_mapping.h"
 
+#include "steadylight/base/checkpoint.h"
 #include "steadylight/integrators/photon_gather.h"
 
 namespace steadylight {
@@ -18,18 +19,14 @@ Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3
     return g.record.E;
 }
 
-FramePhotons trace_frame_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats) {
-    const Stopwatch time;
-    TracedPhotons photons = trace_photons(context, settings.photons);
-    IrradiancePhotons irradiance(photons.global, settings.irradiance_stride, settings.irradiance_estimate);
-    stats.photon_tracing_s = time.elapsed_s();
-    stats.global_photons_emitted = photons.global.emitted();
-    stats.global_photons_stored = long(photons.global.size());
-    stats.caustic_photons_emitted = photons.caustic.emitted();
-    stats.caustic_photons_stored = long(photons.caustic.size());
-    stats.dynamic_photons_stored = long(photons.dynamic.size());
-    stats.irradiance_photons = long(irradiance.size());
-    return {std::move(photons), std::move(irradiance)};
+FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats)
+    : maps(trace_photons(context, settings.photons)),
+      irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate) {
+    stats.global_photons_emitted = maps.global.emitted();
+    stats.global_photons_stored = long(maps.global.size());
+    stats.caustic_photons_emitted = maps.caustic.emitted();
+    stats.caustic_photons_stored = long(maps.caustic.size());
+    stats.dynamic_photons_stored = long(maps.dynamic.size());
 }
 
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings) {
@@ -39,13 +36,17 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.method = "photon";
     stats.frame = context.frame.frame;
 
-    // Pass 1: photons, and irradiance precomputed at a share of the global ones.
-    const FramePhotons traced = trace_frame_photons(context, settings, stats);
+    // Pass 1: photons (irradiance at a share of the global ones is computed as gathers need it).
+    begin_phase("photons");
+    Stopwatch phase;
+    const FramePhotons traced(context, settings, stats);
+    stats.photon_tracing_s = phase.elapsed_s();
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance_photons = traced.irradiance;
 
     // Pass 2a: the irradiance cache over the image, by final gathering.
-    Stopwatch phase;
+    begin_phase("irradiance cache");
+    phase = Stopwatch();
     IrradianceCache cache(settings.cache);
     const float max_radius = settings.irradiance_estimate.max_radius;
     const CacheBuildStats built = build_photon_cache(
@@ -54,11 +55,12 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.irradiance_records = built.records_added;
 
     // Pass 2b: shade every pixel.
+    begin_phase("shading");
     phase = Stopwatch();
     const auto gather = make_point_gather(context, irradiance_photons, max_radius, settings.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
-    ShadedFrame shaded = shade_frame(context, settings.shading, photons.caustic, [&](const SurfacePoint& sp, Vec3 n, const PixelSample&, ExtraLayers*) {
-        return cached_irradiance(cache, sp, n, gather, fallbacks, gather_rays);
+    ShadedFrame shaded = shade_frame(context, settings.shading, photons.caustic, [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers*) {
+        return remembered(pixel, sp, n, [&] { return PixelMemo::Values{cached_irradiance(cache, sp, n, gather, fallbacks, gather_rays)}; })[0];
     });
     stats.direct_s = phase.elapsed_s();
     stats.caustics_s = shaded.caustic_cpu_s;
@@ -67,6 +69,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
 
     take_common_layers(shaded, out);
     out.records = record_picture(context.frame.camera, cache.records());
+    stats.irradiance_photons = irradiance_photons.computed();
     stats.total_s = total.elapsed_s();
     return out;
 }

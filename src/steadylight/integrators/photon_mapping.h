@@ -1,6 +1,6 @@
 // Two-pass photon mapping with final gathering and an irradiance cache (Jensen 2001; the paper's
 // reference method, DESIGN.md §2.4), every frame from scratch:
-//   photon tracing (global and caustic maps) -> irradiance precomputed at photons (Christensen
+//   photon tracing (global and caustic maps) -> irradiance at photons, computed as needed (Christensen
 //   1999) -> irradiance cache over the image by final gathering -> per pixel
 //   L_r = L_d + L_i + L_c + L_s (shading_pass.h).
 // The localized method (paper §3, localized.h) reuses these pieces with a static cache.
@@ -33,15 +33,18 @@ struct PhotonFrame {
 
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings);
 
-/// A frame's photon maps and the irradiance precomputed at a share of its global photons.
+/// The first pass of every photon-mapping method: a frame's photon maps, and the irradiance
+/// precomputed (lazily) at a share of its global photons. Construction traces the photons and
+/// records the counts and the time in `stats`. Never copied or moved: `irradiance` refers to
+/// `maps.global`.
 struct FramePhotons {
+    FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats);
+    FramePhotons(const FramePhotons&) = delete;
+    FramePhotons& operator=(const FramePhotons&) = delete;
+
     TracedPhotons maps;
     IrradiancePhotons irradiance;
 };
-
-/// The first pass of every photon-mapping method: traces the frame's photons, precomputes
-/// irradiance, and records the counts and the time in `stats`.
-FramePhotons trace_frame_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats);
 
 /// Moves the shading pass's common layers into a frame that has members of the same names.
 template <class FrameImages>

@@ -92,7 +92,12 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
     const Frame frame = Frame::from_normal(sp.ns);
     const Vec3 wo = frame.to_local(-ray.d);
     if (bsdf.is_diffuse()) {
-        shade_diffuse(sp, frame, bsdf, wo, depth, pixel, strata, rng, c);
+        PixelSample at = pixel;
+        // Within a pixel the camera's rays spread over about one footprint; at grazing angles
+        // over more, hence the factor 2.
+        at.footprint = 2 * m_context.frame.camera.pixel_footprint(hit->t);
+        if (depth > 0) at.memo = nullptr;
+        shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, rng, c);
         return c;
     }
     // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
@@ -108,6 +113,19 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
 }
 
 }  // namespace
+
+const PixelMemo::Values* PixelMemo::find(const SurfacePoint& sp, Vec3 n, float reach) const {
+    constexpr float min_cos_normals = 0.99f;  // about 8 degrees
+    for (int i = 0; i < m_count; ++i) {
+        const Entry& e = m_entries[size_t(i)];
+        if (e.object == sp.object && dot(e.n, n) > min_cos_normals && length2(e.p - sp.p) <= reach * reach) return &e.values;
+    }
+    return nullptr;
+}
+
+void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
+    if (m_count < capacity) m_entries[size_t(m_count++)] = {sp.object, sp.p, n, values};
+}
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
                         const IndirectIrradiance& indirect) {
@@ -127,11 +145,12 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                 const Vec2 shift = rng.next_vec2();
                 const LightStrata strata{0, uint32_t(n * settings.direct_samples), rng.next_vec2()};
                 Components sum;
+                PixelMemo memo;
                 for (int s = 0; s < n; ++s) {
                     const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
                     const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
                     const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
-                    const Components c = shader.shade(ray, 0, true, {x, y, s, n}, ray_strata, rng);
+                    const Components c = shader.shade(ray, 0, true, {x, y, s, n, &memo}, ray_strata, rng);
                     if (!is_finite(c.sum())) continue;
                     sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
                     for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];

@@ -27,12 +27,53 @@ struct ShadingSettings {
 constexpr int max_extra_layers = 4;
 using ExtraLayers = std::array<Rgb, max_extra_layers>;
 
+/// Indirect irradiance found for a pixel's earlier camera rays, so that its later rays landing
+/// on the same surface close by can reuse it: the cache's indirect light varies over several
+/// pixels (records reach at least CacheSettings::min_spacing_px), so one look-up serves the
+/// pixel, and 16 camera rays cost about one look-up instead of 16. Rays hitting another object,
+/// or a surface turned by more than about 8 degrees (an edge, a crease), look up their own.
+class PixelMemo {
+public:
+    using Values = std::array<Rgb, 3>;  // what the method needs to remember (e.g. L_y and L_t)
+
+    /// Values stored for a point of the same object within `reach` of sp.p, with a normal close to n.
+    const Values* find(const SurfacePoint& sp, Vec3 n, float reach) const;
+    /// Remembers values at (sp, n); when full, the values are simply not kept.
+    void add(const SurfacePoint& sp, Vec3 n, const Values& values);
+    void clear() { m_count = 0; }
+
+private:
+    struct Entry {
+        int object;
+        Vec3 p, n;
+        Values values;
+    };
+    static constexpr int capacity = 4;
+    std::array<Entry, capacity> m_entries;
+    int m_count = 0;
+};
+
 /// Which camera ray of which pixel is being shaded.
 struct PixelSample {
     int x = 0, y = 0;
     int sample = 0;   // 0 .. samples_per_pixel - 1
     int samples = 1;
+    /// For points the camera sees directly: the pixel's memo and the world size of one pixel at
+    /// the point. Null (and 0) for points seen through mirrors and glass.
+    PixelMemo* memo = nullptr;
+    float footprint = 0;
 };
+
+/// The values `compute()` returns at (sp, n), or those a previous camera ray of the same pixel
+/// found close to sp.p on the same surface (see PixelMemo).
+template <class Compute>
+PixelMemo::Values remembered(const PixelSample& pixel, const SurfacePoint& sp, Vec3 n, Compute&& compute) {
+    if (!pixel.memo) return compute();
+    if (const PixelMemo::Values* values = pixel.memo->find(sp, n, pixel.footprint)) return *values;
+    const PixelMemo::Values values = compute();
+    pixel.memo->add(sp, n, values);
+    return values;
+}
 
 /// Indirect irradiance at diffuse point `sp` with normal `n` (facing the viewer), for a camera
 /// ray of `pixel`. `extra` is non-null for the points the camera sees directly: the method adds

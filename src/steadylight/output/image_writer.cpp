@@ -7,6 +7,7 @@
 #include <ImfOutputFile.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <vector>
@@ -75,12 +76,21 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
 
 void write_exr(const std::string& path, const Image& image) { write_exr(path, {{"", &image}}); }
 
+std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view) {
+    const std::vector<unsigned char> pixels = encode_srgb8(image, view);
+    std::vector<unsigned char> png;
+    const auto append = [](void* context, void* data, int size) {
+        auto& out = *static_cast<std::vector<unsigned char>*>(context);
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        out.insert(out.end(), bytes, bytes + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, pixels.data(), image.width * 3))
+        throw std::runtime_error("PNG encoder failed");
+    return png;
+}
+
 void write_png(const std::string& path, const Image& image, const ViewTransform& view) {
-    write_file_atomically(path, [&](const std::string& file) {
-        const std::vector<unsigned char> bytes = encode_srgb8(image, view);
-        if (!stbi_write_png(file.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3))
-            throw std::runtime_error("PNG encoder failed");
-    });
+    write_binary_file(path, encode_png(image, view));
 }
 
 Image read_exr(const std::string& path, const std::string& layer) {
@@ -123,6 +133,18 @@ std::vector<ExrChannelInfo> read_exr_channels(const std::string& path) {
     } catch (const std::exception& e) {
         throw InputError(path, std::string("cannot read EXR: ") + e.what());
     }
+}
+
+std::vector<ExrLayerInfo> read_exr_layers(const std::string& path) {
+    std::vector<ExrLayerInfo> layers;
+    for (const ExrChannelInfo& channel : read_exr_channels(path)) {
+        const size_t dot = channel.name.rfind('.');
+        const std::string layer = dot == std::string::npos ? "" : channel.name.substr(0, dot);
+        auto found = std::find_if(layers.begin(), layers.end(), [&](const ExrLayerInfo& l) { return l.name == layer; });
+        if (found == layers.end()) found = layers.insert(layers.end(), {layer, {}});
+        found->channels.push_back(dot == std::string::npos ? channel.name : channel.name.substr(dot + 1));
+    }
+    return layers;
 }
 
 }  // namespace steadylight

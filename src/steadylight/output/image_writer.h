@@ -34,9 +34,11 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers,
                ExrPixelType type = ExrPixelType::half);
 /// Linear RGB radiance as a half-float EXR with channels R, G, B.
 void write_exr(const std::string& path, const Image& image);
-/// The image through `view` as an 8-bit sRGB PNG.
+/// The image through `view` as the bytes of an 8-bit sRGB PNG file (for pages that embed images).
+std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view = {});
+/// The image through `view` as an 8-bit sRGB PNG (encode_png written to `path`).
 void write_png(const std::string& path, const Image& image, const ViewTransform& view = {});
-/// Reads one layer of an EXR (for tests and tools): its R, G, B channels, or for a scalar layer
+/// Reads one layer of an EXR (for tests and tools): its R, G, B channels, or for a grey layer
 /// its Y channel copied into R, G and B.
 Image read_exr(const std::string& path, const std::string& layer = "");
 
@@ -45,7 +47,19 @@ struct ExrChannelInfo {
     std::string name;
     ExrPixelType type;
 };
-/// The channels of an EXR file, read with OpenEXR (for tests and tools).
+/// The channels of an EXR file, from its header only (for tests and tools).
+/// Throws InputError naming the file when it cannot be read.
 std::vector<ExrChannelInfo> read_exr_channels(const std::string& path);
+
+/// One layer of an EXR as its header lists it: channels `<name>.<channel>`, or the channels
+/// without a dot for the empty name.
+struct ExrLayerInfo {
+    std::string name;
+    std::vector<std::string> channels;  // the part after the last '.', in header order
+};
+
+/// The layers of an EXR file (read_exr_channels grouped by name), in the order of their first
+/// channel. Throws InputError naming the file when it cannot be read.
+std::vector<ExrLayerInfo> read_exr_layers(const std::string& path);
 
 }  // namespace steadylight

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "steadylight/base/error.h"
 #include "steadylight/output/frame_layers.h"
@@ -80,6 +82,26 @@ TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     EXPECT_EQ(named.pixels, plain.pixels);
     const Image back = read_exr(path, "influence");
     EXPECT_EQ(back.at(5, 3), (Rgb{23, 23, 23}));
+
+    // The same channels grouped into layers, in header order.
+    const std::vector<ExrLayerInfo> layers = read_exr_layers(path);
+    ASSERT_EQ(layers.size(), 4u);
+    EXPECT_EQ(layers[0].name, "");
+    EXPECT_EQ(layers[0].channels, (std::vector<std::string>{"B", "G", "R"}));
+    EXPECT_EQ(layers[1].name, "beauty");
+    EXPECT_EQ(layers[3].name, "influence");
+    EXPECT_EQ(layers[3].channels, (std::vector<std::string>{"Y"}));
+    fs::remove(path);
+}
+
+TEST(ImageWriter, PngFileHoldsTheEncodedBytes) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_encoded.png").string();
+    const ViewTransform view{.exposure_ev = 1, .curve = ViewCurve::filmic};
+    write_png(path, gradient(5, 3), view);
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_EQ(bytes, encode_png(gradient(5, 3), view));
+    EXPECT_NE(bytes, encode_png(gradient(5, 3)));
     fs::remove(path);
 }
 

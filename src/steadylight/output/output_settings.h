@@ -17,12 +17,13 @@ struct OutputSettings {
     std::string video_file;          // empty: no video; else an H.264 MP4 of the PNG sequence
 };
 
+/// What shapes the written images: the settings file's "render" part holds it
+/// (output/settings_file.h). The video is left out, since it does not change the frames.
 inline void to_json(nlohmann::json& json, const OutputSettings& s) {
     json = {{"exr_type", s.exr_type == ExrPixelType::half ? "half" : "float"},
             {"exposure_ev", s.view.exposure_ev},
             {"view_transform", s.view.curve == ViewCurve::filmic ? "filmic" : "standard"},
-            {"dither", s.view.dither},
-            {"video", s.video_file}};
+            {"dither", s.view.dither}};
 }
 
 }  // namespace steadylight

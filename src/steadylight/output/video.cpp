@@ -70,7 +70,7 @@ void check_video_possible(const std::vector<int>& frames) {
         throw InputError("--video", "the ffmpeg program is not installed (not found in PATH); install it "
                                     "(Debian: apt-get install ffmpeg) or render without --video");
     if (!contiguous_span(frames))
-        throw InputError("--video", "a video needs consecutive frames (a range A-B without gaps)");
+        throw InputError("--video", "a video needs consecutive frames (--frames without gaps or steps, such as A-B)");
 }
 
 std::vector<std::string> ffmpeg_arguments(const VideoJob& job, const std::string& temporary_output) {

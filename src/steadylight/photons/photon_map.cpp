@@ -54,21 +54,34 @@ Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& s
     return sum / ((1 - 2.0f / 3.0f) * pi * r2);
 }
 
-IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings) {
+IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings)
+    : m_global(&global), m_stride(size_t(stride)), m_settings(settings) {
     const std::vector<Photon>& photons = global.photons();
-    const size_t count = (photons.size() + size_t(stride) - 1) / size_t(stride);
+    const size_t count = (photons.size() + m_stride - 1) / m_stride;
     m_n.resize(count);
-    m_E.resize(count);
     std::vector<Vec3> positions(count);
-    parallel_for_chunks(long(count), 256, [&](long begin, long end) {
-        for (long i = begin; i < end; ++i) {
-            const Photon& photon = photons[size_t(i) * size_t(stride)];
-            positions[size_t(i)] = photon.p;
-            m_n[size_t(i)] = photon.n;
-            m_E[size_t(i)] = global.estimate_irradiance(photon.p, photon.n, settings);
-        }
-    });
-    m_index = PointIndex(std::move(positions));
+    for (size_t i = 0; i < count; ++i) {
+        positions[i] = photons[i * m_stride].p;
+        m_n[i] = photons[i * m_stride].n;
+    }
+    m_E.resize(count);
+    m_state = std::make_unique<std::atomic<uint8_t>[]>(count);  // value-initialised: all empty
+    m_index = PointIndex(positions);
+}
+
+Rgb IrradiancePhotons::irradiance_at(uint32_t i) const {
+    enum : uint8_t { empty, writing, ready };
+    if (m_state[i].load(std::memory_order_acquire) == ready) return m_E[i];
+    // A pure function of the map: whichever thread computes it first, the value is the same.
+    const Photon& photon = m_global->photons()[i * m_stride];
+    const Rgb E = m_global->estimate_irradiance(photon.p, photon.n, m_settings);
+    uint8_t expected = empty;
+    if (m_state[i].compare_exchange_strong(expected, writing, std::memory_order_acquire)) {
+        m_E[i] = E;
+        m_state[i].store(ready, std::memory_order_release);
+        m_computed.fetch_add(1, std::memory_order_relaxed);
+    }
+    return E;
 }
 
 std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) const {
@@ -78,7 +91,7 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
     for (const int k : {1, 8}) {
         m_index.k_nearest(p, k, max_radius * max_radius, neighbours);
         for (const Neighbour& nb : neighbours)
-            if (dot(m_n[nb.index], n) > 0.5f) return m_E[nb.index];
+            if (dot(m_n[nb.index], n) > 0.5f) return irradiance_at(nb.index);
         if (int(neighbours.size()) < k) break;  // nothing further within reach
     }
     return std::nullopt;

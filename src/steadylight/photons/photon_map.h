@@ -3,6 +3,8 @@
 // global photons (Christensen 1999) so that a final-gather ray costs one nearest look-up.
 #pragma once
 
+#include <atomic>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -43,20 +45,32 @@ private:
     PointIndex m_index;
 };
 
-/// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999).
+/// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999), lazily:
+/// each value is computed the first time a look-up needs it, then kept. A frame of the localized
+/// method looks up only near its few L_y records, so most values are never needed. Thread-safe;
+/// values do not depend on which thread computes them first. The map must outlive this object
+/// and stay where it is.
 class IrradiancePhotons {
 public:
-    IrradiancePhotons() = default;
     IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings);
 
     /// The irradiance of the nearest precomputed photon whose normal agrees with n, if any
     /// lies within `max_radius`.
     std::optional<Rgb> lookup(Vec3 p, Vec3 n, float max_radius) const;
+    /// Photons that carry a precomputed value, and how many have been computed so far.
     size_t size() const { return m_E.size(); }
+    long computed() const { return m_computed.load(); }
 
 private:
+    Rgb irradiance_at(uint32_t i) const;
+
+    const PhotonMap* m_global;
+    size_t m_stride;
+    DensitySettings m_settings;
     std::vector<Vec3> m_n;
-    std::vector<Rgb> m_E;
+    mutable std::vector<Rgb> m_E;
+    std::unique_ptr<std::atomic<uint8_t>[]> m_state;  // per value: empty, being written, ready
+    mutable std::atomic<long> m_computed = 0;
     PointIndex m_index;
 };
 

@@ -41,6 +41,29 @@ TEST(PhotonMap, KNearestMatchesBruteForce) {
     }
 }
 
+// Photon maps hold many photons at the same spot (a photon stored twice at one hit, walls
+// meeting): equal distances come back in index order, exactly as a brute-force search sorts them.
+TEST(PhotonMap, KNearestBreaksTiesByIndexLikeBruteForce) {
+    std::vector<Vec3> points = random_points(3000, 3);
+    for (int i = 0; i < 3000; i += 3) points[size_t(i)] = points[size_t(i / 2)];  // duplicates
+    const PointIndex index(points);
+    std::vector<Neighbour> found;
+    for (const int k : {1, 7, 300, 5000}) {
+        for (const Vec3& q : random_points(30, 4)) {
+            index.k_nearest(q, k, 0.09f, found);
+            std::vector<Neighbour> expected;
+            for (uint32_t i = 0; i < points.size(); ++i)
+                if (length2(points[i] - q) <= 0.09f) expected.push_back({i, length2(points[i] - q)});
+            std::sort(expected.begin(), expected.end(), [](auto a, auto b) {
+                return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
+            });
+            expected.resize(std::min(expected.size(), size_t(k)));
+            ASSERT_EQ(found.size(), expected.size()) << "k " << k;
+            for (size_t i = 0; i < found.size(); ++i) ASSERT_EQ(found[i].index, expected[i].index) << "k " << k;
+        }
+    }
+}
+
 // Photons of total power P spread uniformly over a unit square: irradiance P / 1 m^2, by both
 // the plain and the cone-filtered estimate, and only from the side the photons arrived on.
 TEST(PhotonMap, UniformPhotonsGiveTheirPowerPerArea) {
@@ -65,6 +88,24 @@ TEST(PhotonMap, IrradiancePhotonLookupRespectsNormals) {
     EXPECT_TRUE(irradiance.lookup({0.5f, 0, 0.5f}, {0, 1, 0}, 0.2f).has_value());
     EXPECT_FALSE(irradiance.lookup({0.5f, 0, 0.5f}, {0, -1, 0}, 0.2f).has_value());
     EXPECT_FALSE(irradiance.lookup({5, 0, 5}, {0, 1, 0}, 0.2f).has_value());
+}
+
+// The irradiance at photons is computed on first use: a look-up returns the estimate at the
+// nearest precomputed photon, and only the photons looked up are ever computed.
+TEST(PhotonMap, IrradiancePhotonsComputeOnlyWhatIsLookedUp) {
+    std::vector<Photon> photons;
+    for (int i = 0; i < 1000; ++i)
+        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 0, 0}});
+    const PhotonMap map(std::move(photons), 1000);
+    const DensitySettings settings{.k = 50, .max_radius = 0.5f};
+    const IrradiancePhotons irradiance(map, 1, settings);
+    EXPECT_EQ(irradiance.computed(), 0);
+    const Photon& photon = map.photons()[123];
+    const std::optional<Rgb> E = irradiance.lookup(photon.p, {0, 1, 0}, 0.2f);
+    ASSERT_TRUE(E.has_value());
+    EXPECT_EQ(*E, map.estimate_irradiance(photon.p, photon.n, settings));
+    EXPECT_EQ(irradiance.lookup(photon.p, {0, 1, 0}, 0.2f), E);
+    EXPECT_EQ(irradiance.computed(), 1);
 }
 
 TEST(Halton, ComponentsAreInUnitIntervalAndEquidistributed) {

@@ -1,55 +1,156 @@
 #include "steadylight/photons/point_index.h"
 
-#include <nanoflann.hpp>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <limits>
+
+#include "steadylight/base/check.h"
 
 namespace steadylight {
+namespace {
 
-/// nanoflann's dataset adaptor over the point vector.
-struct PointCloud {
-    const std::vector<Vec3>* points;
-    size_t kdtree_get_point_count() const { return points->size(); }
-    float kdtree_get_pt(size_t i, size_t dim) const { return (*points)[i][int(dim)]; }
-    template <class Box>
-    bool kdtree_get_bbox(Box&) const { return false; }
+// Ranges this small are leaves, scanned point by point.
+constexpr uint32_t leaf_size = 8;
+// Ranges this large build their two halves in parallel (the result does not depend on it).
+constexpr uint32_t parallel_build_size = 32 * 1024;
+
+/// Nearer first; equal distances by index, so every result is unique. (A function object, so
+/// that the heap and sort algorithms inline it.)
+constexpr struct {
+    bool operator()(const Neighbour& a, const Neighbour& b) const {
+        return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
+    }
+} nearer;
+
+/// The k best neighbours so far; once k are found, a max-heap with the farthest on top, and the
+/// search radius shrinks to the farthest one's.
+class BoundedHeap {
+public:
+    BoundedHeap(Neighbour* items, int k, float max_distance2) : m_items(items), m_k(k), m_radius2(max_distance2) {}
+
+    float radius2() const { return m_radius2; }
+    int size() const { return m_count; }
+
+    void offer(uint32_t index, float distance2) {
+        if (distance2 > m_radius2) return;
+        const Neighbour candidate{index, distance2};
+        if (m_count < m_k) {
+            // Filling up: no order needed until the k-th arrives.
+            m_items[m_count++] = candidate;
+            if (m_count == m_k) {
+                std::make_heap(m_items, m_items + m_k, nearer);
+                m_radius2 = m_items[0].distance2;
+            }
+        } else if (nearer(candidate, m_items[0])) {
+            replace_top(candidate);
+            m_radius2 = m_items[0].distance2;
+        }
+    }
+
+    /// Sorts the items nearest first.
+    void sort() { std::sort(m_items, m_items + m_count, nearer); }
+
+private:
+    /// Puts `item` in place of the farthest and sifts it down.
+    void replace_top(const Neighbour& item) {
+        int i = 0;
+        for (;;) {
+            int child = 2 * i + 1;
+            if (child >= m_k) break;
+            if (child + 1 < m_k && nearer(m_items[child], m_items[child + 1])) ++child;
+            if (!nearer(item, m_items[child])) break;
+            m_items[i] = m_items[child];
+            i = child;
+        }
+        m_items[i] = item;
+    }
+
+    Neighbour* m_items;
+    int m_k;
+    int m_count = 0;
+    float m_radius2;
 };
 
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointCloud>, PointCloud, 3, uint32_t>;
-
-struct PointIndex::Tree {
-    std::vector<Vec3> points;
-    PointCloud cloud{&points};
-    KdTree tree;
-    explicit Tree(std::vector<Vec3> p)
-        : points(std::move(p)), tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
-};
-
-PointIndex::PointIndex() = default;
-PointIndex::~PointIndex() = default;
-PointIndex::PointIndex(PointIndex&&) noexcept = default;
-PointIndex& PointIndex::operator=(PointIndex&&) noexcept = default;
-
-PointIndex::PointIndex(std::vector<Vec3> points) {
-    if (!points.empty()) m_tree = std::make_unique<Tree>(std::move(points));
+int widest_axis(Vec3 lower, Vec3 upper) {
+    const Vec3 extent = upper - lower;
+    return extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
 }
 
-size_t PointIndex::size() const { return m_tree ? m_tree->points.size() : 0; }
+}  // namespace
+
+PointIndex::PointIndex(const std::vector<Vec3>& points) {
+    SL_CHECK(points.size() < std::numeric_limits<uint32_t>::max());
+    if (points.empty()) return;
+    m_entries.resize(points.size());
+    Vec3 lower = points[0], upper = points[0];
+    for (uint32_t i = 0; i < points.size(); ++i) {
+        m_entries[i] = {{points[i].x, points[i].y, points[i].z}, i};
+        lower = min(lower, points[i]), upper = max(upper, points[i]);
+    }
+    m_axis.assign(points.size(), 0);
+    build(0, uint32_t(points.size()), lower, upper);
+}
+
+void PointIndex::build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper) {
+    if (end - begin <= leaf_size) return;
+    // Split the range's box across its widest side at the median point.
+    const int axis = widest_axis(lower, upper);
+    const uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(m_entries.begin() + begin, m_entries.begin() + mid, m_entries.begin() + end,
+                     [axis](const Entry& a, const Entry& b) { return a.p[axis] != b.p[axis] ? a.p[axis] < b.p[axis] : a.id < b.id; });
+    m_axis[mid] = uint8_t(axis);
+    Vec3 left_upper = upper, right_lower = lower;
+    left_upper[axis] = right_lower[axis] = m_entries[mid].p[axis];
+    const auto left = [&] { build(begin, mid, lower, left_upper); };
+    const auto right = [&] { build(mid + 1, end, right_lower, upper); };
+    if (end - begin >= parallel_build_size) {
+        tbb::parallel_invoke(left, right);
+    } else {
+        left();
+        right();
+    }
+}
+
+template <class Heap>
+void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap) const {
+    const auto offer = [&](const Entry& e) {
+        const float dx = e.p[0] - p[0], dy = e.p[1] - p[1], dz = e.p[2] - p[2];
+        heap.offer(e.id, dx * dx + dy * dy + dz * dz);
+    };
+    // Descend towards p; visit the far half of a split afterwards if the heap's radius still
+    // reaches the far half's cell. The distance to a cell is kept per axis and updated as the
+    // search crosses splitting planes (Arya & Mount 1993), which prunes far better than the
+    // distance to the last plane alone.
+    while (end - begin > leaf_size) {
+        const uint32_t mid = begin + (end - begin) / 2;
+        offer(m_entries[mid]);
+        const int axis = m_axis[mid];
+        const float d = p[axis] - m_entries[mid].p[axis];
+        if (d < 0) {
+            search(begin, mid, p, cell, heap);
+            begin = mid + 1;
+        } else {
+            search(mid + 1, end, p, cell, heap);
+            end = mid;
+        }
+        const float offset = cell.offset[axis];
+        cell.distance2 += d * d - offset * offset;
+        cell.offset[axis] = d;
+        if (cell.distance2 > heap.radius2()) return;
+    }
+    for (uint32_t i = begin; i < end; ++i) offer(m_entries[i]);
+}
 
 void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {
     out.clear();
-    if (!m_tree || k <= 0) return;
-    thread_local std::vector<uint32_t> indices;
-    thread_local std::vector<float> distances2;
-    indices.resize(static_cast<size_t>(k));
-    distances2.resize(static_cast<size_t>(k));
+    if (m_entries.empty() || k <= 0) return;
+    out.resize(size_t(k));
+    BoundedHeap heap(out.data(), k, max_distance2);
     const float query[3] = {p.x, p.y, p.z};
-    const size_t found = m_tree->tree.knnSearch(query, size_t(k), indices.data(), distances2.data());
-    for (size_t i = 0; i < found; ++i)
-        if (distances2[i] <= max_distance2) out.push_back({indices[i], distances2[i]});
-    std::sort(out.begin(), out.end(), [](const Neighbour& a, const Neighbour& b) {
-        return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
-    });
+    search(0, uint32_t(m_entries.size()), query, CellDistance{}, heap);
+    heap.sort();
+    out.resize(size_t(heap.size()));
 }
 
 }  // namespace steadylight

@@ -1,0 +1,71 @@
+#include "steadylight/report/stats_series.h"
+
+#include <algorithm>
+#include <map>
+
+namespace steadylight {
+namespace {
+
+/// Where a method sorts among the series of a scene: the reference method first.
+int method_rank(const std::string& method) {
+    if (method == "photon") return 0;
+    if (method == "localized") return 1;
+    if (method == "frozen") return 2;
+    return 3;
+}
+
+}  // namespace
+
+std::vector<StatsSeries> group_stats_series(const FrameCatalog& catalog) {
+    // The catalog is sorted by scene, then frame, so each series comes out in frame order.
+    std::map<std::pair<std::string, std::string>, StatsSeries> grouped;
+    for (const CatalogFrame& frame : catalog.frames) {
+        if (!frame.stats) continue;
+        StatsSeries& series = grouped[{frame.scene, frame.method()}];
+        series.scene = frame.scene;
+        series.method = frame.method();
+        series.frames.push_back(*frame.stats);
+    }
+    std::vector<StatsSeries> result;
+    for (auto& [key, series] : grouped) result.push_back(std::move(series));
+    std::stable_sort(result.begin(), result.end(), [](const StatsSeries& a, const StatsSeries& b) {
+        if (a.scene != b.scene) return a.scene < b.scene;
+        return method_rank(a.method) < method_rank(b.method);
+    });
+    return result;
+}
+
+const std::vector<StatsField>& phase_time_fields() {
+    static const std::vector<StatsField> fields{
+        {"photon tracing", [](const FrameStats& s) { return s.photon_tracing_s; }},
+        {"irradiance cache (L_y)", [](const FrameStats& s) { return s.cache_s; }},
+        {"influence", [](const FrameStats& s) { return s.influence_s; }},
+        {"L_t correction", [](const FrameStats& s) { return s.correction_s; }},
+        {"shading", [](const FrameStats& s) { return s.direct_s; }},
+        {"caustics (cpu)", [](const FrameStats& s) { return s.caustics_s; }},
+        {"total", [](const FrameStats& s) { return s.total_s; }},
+    };
+    return fields;
+}
+
+const std::vector<StatsField>& count_fields() {
+    static const std::vector<StatsField> fields{
+        {"irradiance records computed", [](const FrameStats& s) { return double(s.irradiance_records); }},
+        {"static records", [](const FrameStats& s) { return double(s.static_records); }},
+        {"gather rays", [](const FrameStats& s) { return double(s.gather_rays); }},
+        {"fallback gathers", [](const FrameStats& s) { return double(s.fallback_gathers); }},
+        {"global photons stored", [](const FrameStats& s) { return double(s.global_photons_stored); }},
+        {"caustic photons stored", [](const FrameStats& s) { return double(s.caustic_photons_stored); }},
+        {"dynamic photons stored", [](const FrameStats& s) { return double(s.dynamic_photons_stored); }},
+    };
+    return fields;
+}
+
+double mean_of(const StatsSeries& series, const StatsField& field) {
+    if (series.frames.empty()) return 0;
+    double sum = 0;
+    for (const FrameStats& stats : series.frames) sum += field.value(stats);
+    return sum / double(series.frames.size());
+}
+
+}  // namespace steadylight

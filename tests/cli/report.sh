@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Renders three tiny BALL frames with the localized method, writes `steadylight report` for
+# them and checks the page: every frame in the contact sheet, plots with a point per frame, the
+# summary table, the AOV layers, nothing fetched from the network; then --frame, --out and bad
+# input. The page it leaves in OUT/report.html is what cli.report_chromium opens.
+set -euo pipefail
+binary=$1 source=$2 out=$3
+
+fail() { echo "FAIL: $*"; exit 1; }
+has() { grep -qF -- "$1" "$2" || fail "$2 lacks: $1"; }
+
+rm -rf "$out"
+"$binary" render "$source/scenes/ball.json" --frames 0-2 --spp 1 --size 40x30 --photons 2000 --caustic-photons 0 \
+  --gather-samples 32 --no-progress --out "$out"
+"$binary" report "$out"
+html=$out/report.html
+[ -s "$html" ] || fail "no $html"
+[ ! -e "$html.partial" ] || fail "$html.partial left behind"
+for frame in 0 1 2; do has "<figure class=\"frame\" data-frame=\"$frame\">" "$html"; done
+has "<th>localized</th>" "$html"
+# The beauty once (the EXR holds it unnamed and as `beauty`), then all 10 AOVs, grey ones too.
+for layer in beauty direct indirect caustic specular indirect_static L_y L_t influence static_records dynamic_records; do
+  [ "$(grep -oF "<figure class=\"aov\" data-layer=\"$layer\">" "$html" | wc -l)" = 1 ] || fail "layer $layer not shown once"
+done
+! grep -qF 'aov-skipped' "$html" || fail "a layer was not shown"
+has "ball, frame 1</h3>" "$html"
+[ "$(grep -o '<svg' "$html" | wc -l)" -ge 3 ] || fail "fewer than 3 plots"
+# Every polyline has one point per frame.
+points=$(grep -o 'points="[^"]*"' "$html" | awk -F, '{ print NF - 1 }' | sort -u)
+[ "$points" = 3 ] || fail "polylines with other than 3 points: $points"
+! grep -qE 'src="https?:|<link|@import|url\(' "$html" || fail "the page fetches something"
+
+"$binary" report "$out" --frame 2 --out "$out/frame2.html"
+has "ball, frame 2</h3>" "$out/frame2.html"
+
+# Bad input: a clear message naming what is wrong, exit status 1.
+expect_error() {  # expect_error REGEX ARGS...
+  local regex=$1; shift
+  set +e; message=$("$binary" report "$@" 2>&1); status=$?; set -e
+  [ $status -eq 1 ] || fail "report $* exited with $status: $message"
+  grep -Eq -- "$regex" <<<"$message" || fail "report $*: message does not match /$regex/: $message"
+}
+expect_error "error: .*nowhere: no such folder" "$out/nowhere"
+expect_error "error: --frame: no EXR of frame 9" "$out" --frame 9
+mkdir -p "$out/broken" && cp "$out"/ball_0000.* "$out/broken/" && echo '{"method": 3}' > "$out/broken/ball_0000.stats.json"
+expect_error "error: .*broken/ball_0000.stats.json: not a frame statistics file" "$out/broken"
+echo "ok"
