@@ -15,6 +15,8 @@
 #include <optional>
 #include <set>
 
+#include <fmt/format.h>
+
 #include "steadylight/scene/gltf_accessors.h"
 #include "steadylight/scene/gltf_animation.h"
 #include "steadylight/scene/gltf_materials.h"
@@ -139,7 +141,8 @@ std::string object_name(const tinygltf::Node& node, const tinygltf::Mesh& mesh, 
     std::string name = !node.name.empty()   ? node.name
                        : !mesh.name.empty() ? mesh.name
                                             : "node " + std::to_string(node_index);
-    if (mesh.primitives.size() > 1) name += "#" + std::to_string(primitive);
+    // fmt rather than "#" + std::to_string(): GCC 12 warns falsely (-Wrestrict, GCC bug 105329).
+    if (mesh.primitives.size() > 1) name += fmt::format("#{}", primitive);
     return name;
 }
 

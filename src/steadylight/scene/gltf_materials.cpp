@@ -5,6 +5,8 @@
 #include <set>
 #include <utility>
 
+#include <fmt/format.h>
+
 namespace steadylight::gltf {
 namespace {
 
@@ -73,7 +75,7 @@ std::string unique_material_name(const SceneDesc& desc, const std::string& name,
         return std::any_of(desc.materials.begin(), desc.materials.end(),
                            [&](const MaterialDesc& m) { return m.name == candidate; });
     };
-    const std::string suffix = "#" + std::to_string(index);
+    const std::string suffix = fmt::format("#{}", index);  // not "#" + to_string: GCC bug 105329
     std::string unique = name;
     while (taken(unique)) unique += suffix;
     return unique;
