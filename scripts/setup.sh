@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev libnanoflann-dev libtinygltf-dev libtinyobjloader-dev
   libopenexr-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev
   libgtest-dev libbenchmark-dev
+  ffmpeg   # optional at run time: only `render --video` and its test (skipped without it) use it
 )
 
 missing=()

@@ -38,7 +38,22 @@ struct RawOptions {
     std::optional<int> spp;
     int threads = 0;
     int gather_samples = 0;
+    std::string exr_type = "half", view_transform = "standard";
 };
+
+/// The options that shape the written files: EXR pixel type, PNG view transform, video.
+void add_output_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
+    command->add_option("--exr-type", raw.exr_type, "EXR channels: half (16-bit) or float (32-bit)")
+        ->capture_default_str()->check(CLI::IsMember({"half", "float"}));
+    command->add_flag_callback("--exr-float", [&raw] { raw.exr_type = "float"; }, "Same as --exr-type float");
+    command->add_option("--exposure", settings.output.view.exposure_ev, "PNG: exposure in stops (linear x 2^EV)")
+        ->capture_default_str()->check(CLI::Range(-64.0f, 64.0f));
+    command->add_option("--view-transform", raw.view_transform, "PNG: standard (clamp) or filmic (Hable curve)")
+        ->capture_default_str()->check(CLI::IsMember({"standard", "filmic"}));
+    command->add_flag("!--no-dither", settings.output.view.dither, "PNG: round without the fixed dither");
+    command->add_option("--video", settings.output.video_file,
+                        "Encode the frames' PNGs as an H.264 MP4 with ffmpeg after rendering");
+}
 
 /// The options `render` and `bake` share: the scene, output, and every setting of the methods.
 void add_method_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
@@ -86,6 +101,8 @@ void print_interrupted(const RenderSummary& summary, bool overwrite) {
 void finish_settings(const RawOptions& raw, RenderSettings& settings) {
     if (raw.frames) settings.frames = parse_frame_selection(*raw.frames);
     if (!raw.size.empty()) parse_size(raw.size, settings);
+    settings.output.exr_type = parse_exr_pixel_type(raw.exr_type);
+    settings.output.view.curve = parse_view_curve(raw.view_transform);
     if (raw.spp) settings.path.samples_per_pixel = settings.photon.shading.samples_per_pixel = *raw.spp;
     settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(raw.gather_samples / 2.0))));
     settings.photon.gather.phi_strata = 2 * settings.photon.gather.theta_strata;
@@ -129,6 +146,7 @@ int main(int argc, char** argv) {
         ->capture_default_str()->check(CLI::Range(0, 10000));
     render->add_flag("!--no-progress", settings.show_progress, "No progress output");
     render->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
+    add_output_options(render, settings, raw);
 
     CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
     add_method_options(bake, settings, raw);

@@ -12,11 +12,13 @@
 #include "steadylight/base/error.h"
 #include "steadylight/output/atomic_file.h"
 #include "steadylight/output/console.h"
+#include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_manifest.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/interrupt.h"
 #include "steadylight/output/settings_file.h"
+#include "steadylight/output/video.h"
 
 namespace steadylight {
 namespace {
@@ -106,16 +108,25 @@ RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& c
 }
 
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
-    std::vector<ExrLayer> layers{{"", &rendered.beauty}};
-    for (const auto& [name, image] : rendered.layers) layers.push_back({name, &image});
-    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"), layers);
-    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty);
+    const OutputSettings& output = settings.output;
+    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
+              frame_exr_layers(rendered.beauty, rendered.layers), output.exr_type);
+    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view);
     if (settings.aov_pngs)
         for (const auto& [name, image] : rendered.layers)
-            write_png(frame_file_name(settings.out_dir, scene.name(), frame, name + ".png"), image);
+            write_png(frame_file_name(settings.out_dir, scene.name(), frame, name + ".png"), image, output.view);
     if (rendered.stats)
         write_text_file(frame_file_name(settings.out_dir, scene.name(), frame, "stats.json"),
                         nlohmann::json(*rendered.stats).dump(2) + "\n");
+}
+
+/// Encodes the PNGs of the selected frames into `--video` (check_video_possible has accepted
+/// `frames`). Frames skipped as complete from an earlier run have their PNGs already.
+void write_video(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames) {
+    const auto [first, last] = *contiguous_span(frames);
+    encode_video({.out_dir = settings.out_dir, .scene_name = scene.name(), .first_frame = first,
+                  .frame_count = last - first + 1, .fps = scene.desc().fps, .output = settings.output.video_file});
+    spdlog::info("video: {} frames at {} fps written to {}", last - first + 1, scene.desc().fps, settings.output.video_file);
 }
 
 /// Writes `<out>/<scene>.settings.json` (an InputError if an earlier run used other settings,
@@ -201,6 +212,7 @@ RenderSummary render_animation(const RenderSettings& settings) {
         throw InputError("--method", "unknown method \"" + settings.method + "\" (localized, photon, frozen, path)");
     const Scene scene = load_scene(settings);
     const std::vector<int> frames = select_frames(settings.frames, scene.frame_count());
+    if (!settings.output.video_file.empty()) check_video_possible(frames);  // before hours of rendering
     std::filesystem::create_directories(settings.out_dir);
     const std::string key = record_settings(settings, scene, frames);
     RenderSummary summary;
@@ -211,6 +223,8 @@ RenderSummary render_animation(const RenderSettings& settings) {
         summary.interrupted = true;
     }
     summary.frames_left.assign(todo.begin() + long(summary.frames_written.size()), todo.end());
+    // The video needs every selected frame: after an interrupt, the resumed run makes it.
+    if (!settings.output.video_file.empty() && !summary.interrupted) write_video(settings, scene, frames);
     summary.seconds = seconds_since(start);
     return summary;
 }

@@ -10,6 +10,7 @@
 #include "steadylight/integrators/localized.h"
 #include "steadylight/integrators/photon_mapping.h"
 #include "steadylight/output/frame_selection.h"
+#include "steadylight/output/output_settings.h"
 
 namespace steadylight {
 
@@ -28,6 +29,7 @@ struct RenderSettings {
     std::string cache_file;             // static cache file; default <out>/<scene>.irrcache
     bool show_progress = true;
     bool aov_pngs = false;              // also write each EXR layer as <scene>_<frame:04>.<layer>.png
+    OutputSettings output;              // EXR pixel type, PNG view transform, --video
 };
 
 struct RenderSummary {

@@ -18,9 +18,11 @@ html=$out/report.html
 [ ! -e "$html.partial" ] || fail "$html.partial left behind"
 for frame in 0 1 2; do has "<figure class=\"frame\" data-frame=\"$frame\">" "$html"; done
 has "<th>localized</th>" "$html"
-for layer in beauty direct indirect influence L_y L_t static_records dynamic_records; do
-  has "<figure class=\"aov\" data-layer=\"$layer\">" "$html"
+# The beauty once (the EXR holds it unnamed and as `beauty`), then all 10 AOVs, grey ones too.
+for layer in beauty direct indirect caustic specular indirect_static L_y L_t influence static_records dynamic_records; do
+  [ "$(grep -oF "<figure class=\"aov\" data-layer=\"$layer\">" "$html" | wc -l)" = 1 ] || fail "layer $layer not shown once"
 done
+! grep -qF 'aov-skipped' "$html" || fail "a layer was not shown"
 has "ball, frame 1</h3>" "$html"
 [ "$(grep -o '<svg' "$html" | wc -l)" -ge 3 ] || fail "fewer than 3 plots"
 # Every polyline has one point per frame.

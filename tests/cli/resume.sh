@@ -5,7 +5,7 @@
 # nothing of frames 1-2, not even temporary files, then runs again and compares the images with
 # A byte for byte (stats.json holds timings, so only images and the static cache are compared).
 # Then: a truncated frame is rendered again, --overwrite renders everything again, other settings
-# are refused, and a real SIGINT from outside stops a render cleanly.
+# (also another --exposure) are refused, and a real SIGINT from outside stops a render cleanly.
 set -euo pipefail
 binary=$1 source=$2 out=$3
 scene=$source/scenes/ball.json
@@ -55,6 +55,9 @@ same_images "$out/A" "$out/B"
 "$binary" render "$scene" "${small[@]}" --out "$out/B" --cache-accuracy 0.5 > "$out/other.log" 2>&1 && fail "other settings accepted"
 grep -q "ball.settings.json: the frames in this folder were rendered with other settings (/photon/cache/accuracy: 0.25 -> 0.5)" \
   "$out/other.log" || { cat "$out/other.log"; fail "other settings: message"; }
+# The output settings shape the images too: another exposure is other settings.
+"$binary" render "$scene" "${small[@]}" --out "$out/B" --exposure 1 > "$out/exposure.log" 2>&1 && fail "other exposure accepted"
+grep -q "other settings (/output/exposure_ev: 0.0 -> 1.0)" "$out/exposure.log" || { cat "$out/exposure.log"; fail "exposure: message"; }
 
 # A real SIGINT from outside, once the first frame of a longer render is written.
 "$binary" render "$scene" "${tiny[@]}" --out "$out/C" > "$out/C.log" 2>&1 &

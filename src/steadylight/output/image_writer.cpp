@@ -8,7 +8,7 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
-#include <cmath>
+#include <array>
 #include <stdexcept>
 #include <vector>
 
@@ -18,36 +18,56 @@
 namespace steadylight {
 namespace {
 
-std::string channel_name(const std::string& layer, int c) {
-    const std::string rgb[3] = {"R", "G", "B"};
-    return layer.empty() ? rgb[c] : layer + "." + rgb[c];
+/// The EXR channel names of a layer and which colour component each takes.
+std::vector<std::pair<std::string, int>> layer_channels(const std::string& layer, bool scalar) {
+    if (scalar) return {{(layer.empty() ? "" : layer + ".") + "Y", 0}};
+    const std::array<std::string, 3> rgb = {"R", "G", "B"};
+    std::vector<std::pair<std::string, int>> channels;
+    for (int c = 0; c < 3; ++c) channels.emplace_back(layer.empty() ? rgb[c] : layer + "." + rgb[c], c);
+    return channels;
 }
+
+/// One channel's pixels, converted to the file's pixel type and kept alive until written.
+struct ChannelData {
+    std::vector<half> halves;
+    std::vector<float> floats;
+
+    ChannelData(const Image& image, int component, ExrPixelType type) {
+        for (const Rgb& pixel : image.pixels) {
+            if (type == ExrPixelType::half) halves.push_back(half(pixel[component]));
+            else floats.push_back(pixel[component]);
+        }
+    }
+    char* base() {
+        return halves.empty() ? reinterpret_cast<char*>(floats.data()) : reinterpret_cast<char*>(halves.data());
+    }
+};
+
+Imf::PixelType imf_type(ExrPixelType type) { return type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT; }
 
 }  // namespace
 
-float linear_to_srgb(float v) {
-    v = std::clamp(v, 0.0f, 1.0f);
-    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+ExrPixelType parse_exr_pixel_type(const std::string& name, const std::string& option) {
+    if (name == "half") return ExrPixelType::half;
+    if (name == "float") return ExrPixelType::float32;
+    throw InputError(option, "unknown EXR pixel type \"" + name + "\" (half or float)");
 }
 
-void write_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
+void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, ExrPixelType type) {
     write_file_atomically(path, [&](const std::string& file) {
         const Image& first = *layers.front().image;
         Imf::Header header(first.width, first.height);
         header.compression() = Imf::ZIP_COMPRESSION;
         Imf::FrameBuffer buffer;
-        std::vector<std::vector<half>> channels;
+        std::vector<ChannelData> channels;
         channels.reserve(layers.size() * 3);
-        for (const ExrLayer& layer : layers) {
-            for (int c = 0; c < 3; ++c) {
-                std::vector<half>& channel = channels.emplace_back(layer.image->pixels.size());
-                for (size_t i = 0; i < channel.size(); ++i) channel[i] = half(layer.image->pixels[i][c]);
-                const std::string name = channel_name(layer.name, c);
-                header.channels().insert(name, Imf::Channel(Imf::HALF));
-                buffer.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(channel.data()), sizeof(half),
-                                               sizeof(half) * size_t(first.width)));
+        const size_t pixel_size = type == ExrPixelType::half ? sizeof(half) : sizeof(float);
+        for (const ExrLayer& layer : layers)
+            for (const auto& [name, component] : layer_channels(layer.name, layer.scalar)) {
+                ChannelData& data = channels.emplace_back(*layer.image, component, type);
+                header.channels().insert(name, Imf::Channel(imf_type(type)));
+                buffer.insert(name, Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
             }
-        }
         Imf::OutputFile out(file.c_str(), header);
         out.setFrameBuffer(buffer);
         out.writePixels(first.height);
@@ -56,11 +76,8 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
 
 void write_exr(const std::string& path, const Image& image) { write_exr(path, {{"", &image}}); }
 
-std::vector<unsigned char> encode_png(const Image& image) {
-    std::vector<unsigned char> pixels(image.pixels.size() * 3);
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c)
-            pixels[3 * i + size_t(c)] = static_cast<unsigned char>(std::lround(255 * linear_to_srgb(image.pixels[i][c])));
+std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view) {
+    const std::vector<unsigned char> pixels = encode_srgb8(image, view);
     std::vector<unsigned char> png;
     const auto append = [](void* context, void* data, int size) {
         auto& out = *static_cast<std::vector<unsigned char>*>(context);
@@ -72,51 +89,62 @@ std::vector<unsigned char> encode_png(const Image& image) {
     return png;
 }
 
-void write_png(const std::string& path, const Image& image) { write_binary_file(path, encode_png(image)); }
+void write_png(const std::string& path, const Image& image, const ViewTransform& view) {
+    write_binary_file(path, encode_png(image, view));
+}
 
 Image read_exr(const std::string& path, const std::string& layer) {
     try {
         Imf::InputFile in(path.c_str());
         const Imath::Box2i window = in.header().dataWindow();
         const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
-        std::vector<float> channels[3];
+        const std::string y_name = (layer.empty() ? "" : layer + ".") + "Y";
+        const bool scalar = in.header().channels().findChannel(y_name) != nullptr;
+        const auto names = layer_channels(layer, scalar);
+        std::vector<std::vector<float>> channels(names.size());
         Imf::FrameBuffer buffer;
-        for (int c = 0; c < 3; ++c) {
-            if (!in.header().channels().findChannel(channel_name(layer, c)))
-                throw std::runtime_error("no channel " + channel_name(layer, c));
+        for (size_t c = 0; c < names.size(); ++c) {
+            if (!in.header().channels().findChannel(names[c].first))
+                throw std::runtime_error("no channel " + names[c].first);
             channels[c].resize(size_t(width) * size_t(height));
             char* origin = reinterpret_cast<char*>(channels[c].data()) -
                            (size_t(window.min.x) + size_t(window.min.y) * size_t(width)) * sizeof(float);
-            buffer.insert(channel_name(layer, c), Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(width)));
+            buffer.insert(names[c].first, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(width)));
         }
         in.setFrameBuffer(buffer);
         in.readPixels(window.min.y, window.max.y);
         Image image(width, height);
         for (size_t i = 0; i < image.pixels.size(); ++i)
-            image.pixels[i] = {channels[0][i], channels[1][i], channels[2][i]};
+            image.pixels[i] = scalar ? Rgb{channels[0][i], channels[0][i], channels[0][i]}
+                                     : Rgb{channels[0][i], channels[1][i], channels[2][i]};
         return image;
     } catch (const std::exception& e) {
         throw InputError(path, std::string("cannot read EXR: ") + e.what());
     }
 }
 
-std::vector<ExrLayerInfo> read_exr_layers(const std::string& path) {
+std::vector<ExrChannelInfo> read_exr_channels(const std::string& path) {
     try {
         Imf::InputFile in(path.c_str());
-        std::vector<ExrLayerInfo> layers;
-        const Imf::ChannelList& channels = in.header().channels();
-        for (auto channel = channels.begin(); channel != channels.end(); ++channel) {
-            const std::string full = channel.name();
-            const size_t dot = full.rfind('.');
-            const std::string layer = dot == std::string::npos ? "" : full.substr(0, dot);
-            auto found = std::find_if(layers.begin(), layers.end(), [&](const ExrLayerInfo& l) { return l.name == layer; });
-            if (found == layers.end()) found = layers.insert(layers.end(), {layer, {}});
-            found->channels.push_back(dot == std::string::npos ? full : full.substr(dot + 1));
-        }
-        return layers;
+        std::vector<ExrChannelInfo> channels;
+        for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+            channels.push_back({it.name(), it.channel().type == Imf::HALF ? ExrPixelType::half : ExrPixelType::float32});
+        return channels;
     } catch (const std::exception& e) {
         throw InputError(path, std::string("cannot read EXR: ") + e.what());
     }
+}
+
+std::vector<ExrLayerInfo> read_exr_layers(const std::string& path) {
+    std::vector<ExrLayerInfo> layers;
+    for (const ExrChannelInfo& channel : read_exr_channels(path)) {
+        const size_t dot = channel.name.rfind('.');
+        const std::string layer = dot == std::string::npos ? "" : channel.name.substr(0, dot);
+        auto found = std::find_if(layers.begin(), layers.end(), [&](const ExrLayerInfo& l) { return l.name == layer; });
+        if (found == layers.end()) found = layers.insert(layers.end(), {layer, {}});
+        found->channels.push_back(dot == std::string::npos ? channel.name : channel.name.substr(dot + 1));
+    }
+    return layers;
 }
 
 }  // namespace steadylight

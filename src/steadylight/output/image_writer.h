@@ -1,32 +1,55 @@
-// Writing finished frames: linear half-float EXR (OpenEXR) and 8-bit sRGB PNG (stb). Each file
-// is written under a temporary name in the same folder and renamed into place, so an interrupted
-// run never leaves a truncated image behind.
+// Writing finished frames: linear multi-layer EXR (OpenEXR, half or float) and 8-bit sRGB PNG
+// (stb) through the view transform of view_transform.h. Each file is written under a temporary
+// name in the same folder and renamed into place, so an interrupted run never leaves a truncated
+// image behind.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "steadylight/base/image.h"
+#include "steadylight/output/view_transform.h"
 
 namespace steadylight {
 
 /// One named image in a multi-layer EXR: channels `<name>.R`, `<name>.G`, `<name>.B`, or plain
-/// R, G, B for the empty name (the beauty image, which every viewer shows first).
+/// R, G, B for the empty name (what every viewer shows first, and Nuke's `rgba` layer). A
+/// `scalar` layer holds a grey image and is stored as the single channel `<name>.Y` (OpenEXR's
+/// name for a luminance-only channel); its value is the image's red channel.
 struct ExrLayer {
     std::string name;
     const Image* image;
+    bool scalar = false;
 };
 
-/// Linear RGB as a half-float EXR with the given layers (all of the same size).
-void write_exr(const std::string& path, const std::vector<ExrLayer>& layers);
+/// How EXR channels are stored: 16-bit half (the default; enough for display-referred work
+/// and a third of the size) or 32-bit float.
+enum class ExrPixelType { half, float32 };
+
+/// "half" or "float"; throws InputError naming `option` otherwise.
+ExrPixelType parse_exr_pixel_type(const std::string& name, const std::string& option = "--exr-type");
+
+/// Linear RGB as a ZIP-compressed EXR with the given layers (all of the same size).
+void write_exr(const std::string& path, const std::vector<ExrLayer>& layers,
+               ExrPixelType type = ExrPixelType::half);
 /// Linear RGB radiance as a half-float EXR with channels R, G, B.
 void write_exr(const std::string& path, const Image& image);
-/// The image clamped to [0, 1] and encoded with the sRGB transfer curve.
-void write_png(const std::string& path, const Image& image);
-/// The bytes of the PNG file write_png writes (for pages that embed images).
-std::vector<unsigned char> encode_png(const Image& image);
-/// Reads the R, G, B channels of one layer of an EXR (for tests and tools).
+/// The image through `view` as the bytes of an 8-bit sRGB PNG file (for pages that embed images).
+std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view = {});
+/// The image through `view` as an 8-bit sRGB PNG (encode_png written to `path`).
+void write_png(const std::string& path, const Image& image, const ViewTransform& view = {});
+/// Reads one layer of an EXR (for tests and tools): its R, G, B channels, or for a grey layer
+/// its Y channel copied into R, G and B.
 Image read_exr(const std::string& path, const std::string& layer = "");
+
+/// A channel of an EXR file as its header lists it (sorted by name).
+struct ExrChannelInfo {
+    std::string name;
+    ExrPixelType type;
+};
+/// The channels of an EXR file, from its header only (for tests and tools).
+/// Throws InputError naming the file when it cannot be read.
+std::vector<ExrChannelInfo> read_exr_channels(const std::string& path);
 
 /// One layer of an EXR as its header lists it: channels `<name>.<channel>`, or the channels
 /// without a dot for the empty name.
@@ -35,11 +58,8 @@ struct ExrLayerInfo {
     std::vector<std::string> channels;  // the part after the last '.', in header order
 };
 
-/// The layers of an EXR file, from its header only, in the order of their first channel.
-/// Throws InputError naming the file when it cannot be read.
+/// The layers of an EXR file (read_exr_channels grouped by name), in the order of their first
+/// channel. Throws InputError naming the file when it cannot be read.
 std::vector<ExrLayerInfo> read_exr_layers(const std::string& path);
-
-/// The sRGB transfer curve (IEC 61966-2-1) for a linear value in [0, 1].
-float linear_to_srgb(float v);
 
 }  // namespace steadylight

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "steadylight/base/error.h"
+#include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
 
 namespace steadylight {
@@ -54,6 +57,68 @@ TEST(ImageWriter, PngIsWrittenWhole) {
 
 TEST(ImageWriter, WritingIntoAMissingFolderFailsCleanly) {
     EXPECT_THROW(write_png("/nonexistent/folder/x.png", gradient(2, 2)), std::runtime_error);
+}
+
+std::vector<std::string> channel_names(const std::vector<ExrChannelInfo>& channels) {
+    std::vector<std::string> names;
+    for (const ExrChannelInfo& channel : channels) names.push_back(channel.name);
+    return names;
+}
+
+TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_layers.exr").string();
+    const Image beauty = gradient(6, 4);
+    Image influence(6, 4);
+    for (size_t i = 0; i < influence.pixels.size(); ++i) influence.pixels[i] = Rgb{1, 1, 1} * float(i);
+    const std::vector<std::pair<std::string, Image>> aovs = {{"direct", gradient(6, 4)}, {"influence", influence}};
+    write_exr(path, frame_exr_layers(beauty, aovs));
+
+    // OpenEXR lists channels sorted by name.
+    const std::vector<ExrChannelInfo> channels = read_exr_channels(path);
+    EXPECT_EQ(channel_names(channels), (std::vector<std::string>{"B", "G", "R", "beauty.B", "beauty.G", "beauty.R",
+                                                                 "direct.B", "direct.G", "direct.R", "influence.Y"}));
+    for (const ExrChannelInfo& channel : channels) EXPECT_EQ(channel.type, ExrPixelType::half) << channel.name;
+    const Image named = read_exr(path, "beauty"), plain = read_exr(path);
+    EXPECT_EQ(named.pixels, plain.pixels);
+    const Image back = read_exr(path, "influence");
+    EXPECT_EQ(back.at(5, 3), (Rgb{23, 23, 23}));
+
+    // The same channels grouped into layers, in header order.
+    const std::vector<ExrLayerInfo> layers = read_exr_layers(path);
+    ASSERT_EQ(layers.size(), 4u);
+    EXPECT_EQ(layers[0].name, "");
+    EXPECT_EQ(layers[0].channels, (std::vector<std::string>{"B", "G", "R"}));
+    EXPECT_EQ(layers[1].name, "beauty");
+    EXPECT_EQ(layers[3].name, "influence");
+    EXPECT_EQ(layers[3].channels, (std::vector<std::string>{"Y"}));
+    fs::remove(path);
+}
+
+TEST(ImageWriter, PngFileHoldsTheEncodedBytes) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_encoded.png").string();
+    const ViewTransform view{.exposure_ev = 1, .curve = ViewCurve::filmic};
+    write_png(path, gradient(5, 3), view);
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_EQ(bytes, encode_png(gradient(5, 3), view));
+    EXPECT_NE(bytes, encode_png(gradient(5, 3)));
+    fs::remove(path);
+}
+
+TEST(ImageWriter, FloatExrKeepsFullPrecision) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_float.exr").string();
+    Image image(3, 2);
+    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = Rgb{1.0001f, 1e-7f, 70000.0f} * float(i + 1);
+    write_exr(path, {{"", &image}, {"L_y", &image}}, ExrPixelType::float32);
+    for (const ExrChannelInfo& channel : read_exr_channels(path)) EXPECT_EQ(channel.type, ExrPixelType::float32) << channel.name;
+    EXPECT_EQ(read_exr(path, "L_y").pixels, image.pixels);  // 70000 overflows half; 1.0001 rounds in it
+    fs::remove(path);
+}
+
+TEST(ImageWriter, ExrPixelTypeNames) {
+    EXPECT_EQ(parse_exr_pixel_type("half"), ExrPixelType::half);
+    EXPECT_EQ(parse_exr_pixel_type("float"), ExrPixelType::float32);
+    EXPECT_THROW(parse_exr_pixel_type("uint"), InputError);
 }
 
 TEST(ImageWriter, SrgbCurveIsContinuousAndClamped) {

@@ -66,7 +66,8 @@ nlohmann::json make_settings_json(const RenderSettings& settings, const RunInfo&
     nlohmann::json render = {{"scene", {{"name", run.scene_name}, {"checksum", file_checksum(settings.scene_file)}}},
                              {"method", settings.method},
                              {"size", {run.width, run.height}},
-                             {"aov_pngs", settings.aov_pngs}};
+                             {"aov_pngs", settings.aov_pngs},
+                             {"output", settings.output}};
     render.update(method_settings(settings));
     return {{"steadylight_version", STEADYLIGHT_VERSION},
             {"date", utc_now()},
@@ -74,6 +75,7 @@ nlohmann::json make_settings_json(const RenderSettings& settings, const RunInfo&
             {"frames", format_frame_list(run.frames)},
             {"threads", run.threads},
             {"cache_file", settings.cache_file},
+            {"video", settings.output.video_file},
             {"render", render}};
 }
 

@@ -91,6 +91,21 @@ TEST_F(SettingsFile, OtherSettingsAreAnErrorNamingThem) {
     EXPECT_EQ(read()["render"]["photon"]["photons"]["global_photons"], 200000);
 }
 
+TEST_F(SettingsFile, OutputSettingsShapeTheImagesButTheVideoDoesNot) {
+    write_settings_file(m_path, json({0}), false);
+    m_settings.output.video_file = "ball.mp4";
+    EXPECT_NO_THROW(write_settings_file(m_path, json({1}), false));
+    EXPECT_EQ(read()["video"], "ball.mp4");
+    m_settings.output.view.exposure_ev = 1.5f;
+    try {
+        write_settings_file(m_path, json({2}), false);
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/output/exposure_ev: 0.0 -> 1.5"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(read()["render"]["output"]["exr_type"], "half");
+}
+
 TEST_F(SettingsFile, OverwriteReplacesOtherSettings) {
     write_settings_file(m_path, json({0, 1}), false);
     m_settings.method = "photon";

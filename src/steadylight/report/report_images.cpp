@@ -25,24 +25,39 @@ std::string thumbnail(const CatalogFrame& frame) {
                        image, thumbnail_caption(frame));
 }
 
-bool has_rgb(const ExrLayerInfo& layer) {
-    const auto has = [&](const char* c) {
-        return std::find(layer.channels.begin(), layer.channels.end(), c) != layer.channels.end();
-    };
-    return has("R") && has("G") && has("B");
+bool has_channel(const ExrLayerInfo& layer, const char* channel) {
+    return std::find(layer.channels.begin(), layer.channels.end(), channel) != layer.channels.end();
+}
+
+/// RGB, or grey (one Y channel), as read_exr reads them.
+bool is_viewable(const ExrLayerInfo& layer) {
+    return (has_channel(layer, "R") && has_channel(layer, "G") && has_channel(layer, "B")) || has_channel(layer, "Y");
 }
 
 bool is_beauty(const std::string& layer_name) { return layer_name.empty() || layer_name == "beauty"; }
 
+/// The layers to show, beauty first (OpenEXR lists channels alphabetically). Frames store the
+/// beauty twice, unnamed and as `beauty` (output/frame_layers.h): it is shown once, from the
+/// named layer when there is one.
+std::vector<ExrLayerInfo> shown_layers(std::vector<ExrLayerInfo> layers) {
+    const bool named_beauty =
+        std::any_of(layers.begin(), layers.end(), [](const ExrLayerInfo& l) { return l.name == "beauty"; });
+    if (named_beauty)
+        std::erase_if(layers, [](const ExrLayerInfo& l) { return l.name.empty(); });
+    std::stable_partition(layers.begin(), layers.end(), [](const ExrLayerInfo& l) { return is_beauty(l.name); });
+    return layers;
+}
+
 std::string layer_figure(const std::string& exr_file, const ExrLayerInfo& layer) {
     const std::string shown_name = is_beauty(layer.name) ? "beauty" : layer.name;
-    if (!has_rgb(layer)) {
+    if (!is_viewable(layer)) {
         std::string channels;
         for (const std::string& channel : layer.channels) channels += (channels.empty() ? "" : ", ") + channel;
-        return fmt::format("<figure class=\"aov-skipped\" data-layer=\"{0}\"><figcaption>{0}: channels {1}, not RGB, "
-                           "not shown</figcaption></figure>\n",
+        return fmt::format("<figure class=\"aov-skipped\" data-layer=\"{0}\"><figcaption>{0}: channels {1}, neither "
+                           "RGB nor Y, not shown</figcaption></figure>\n",
                            escape_html(shown_name), escape_html(channels));
     }
+    // The default view (no exposure, standard curve): AOVs such as record counts are data.
     const std::vector<unsigned char> png = encode_png(read_exr(exr_file, layer.name));
     return fmt::format("<figure class=\"aov\" data-layer=\"{0}\"><img src=\"{1}\" alt=\"{0}\"><figcaption>{0}</figcaption>"
                        "</figure>\n",
@@ -59,9 +74,7 @@ std::string scene_aovs(const std::string& scene, const std::vector<CatalogFrame>
     if (requested_frame && *requested_frame != frame.frame)
         html += fmt::format("<p>Frame {} has no EXR in this scene; showing frame {}.</p>\n", *requested_frame, frame.frame);
     html += "<div class=\"aovs\" data-scene=\"" + escape_html(scene) + "\">\n";
-    // OpenEXR lists channels alphabetically; show the beauty first, whatever its name.
-    std::vector<ExrLayerInfo> layers = read_exr_layers(frame.exr_file);
-    std::stable_partition(layers.begin(), layers.end(), [](const ExrLayerInfo& l) { return is_beauty(l.name); });
+    const std::vector<ExrLayerInfo> layers = shown_layers(read_exr_layers(frame.exr_file));
     for (const ExrLayerInfo& layer : layers) html += layer_figure(frame.exr_file, layer);
     return html + "</div>\n";
 }

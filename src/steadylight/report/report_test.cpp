@@ -10,6 +10,7 @@
 #include "steadylight/base/error.h"
 #include "steadylight/integrators/frame_stats.h"
 #include "steadylight/output/atomic_file.h"
+#include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/report/html.h"
@@ -178,7 +179,20 @@ TEST(Report, ANamedBeautyLayerShowsAsBeauty) {
     EXPECT_EQ(count(html, "data-layer=\"beauty\""), 1u);
     EXPECT_EQ(count(html, "<figure class=\"aov\""), 3u);
     EXPECT_LT(html.find("data-layer=\"beauty\""), html.find("data-layer=\"L_y\""));  // first, though "L" < "b"
+}
 
+TEST(Report, AFramesBeautyShowsOnceAndGreyLayersShowToo) {
+    const std::string dir = fresh_folder("frame_layers");
+    Image beauty(4, 3), influence(4, 3);
+    for (Rgb& p : beauty.pixels) p = {0.5f, 0.25f, 0.1f};
+    for (Rgb& p : influence.pixels) p = {1, 1, 1};
+    // As render writes it: the beauty unnamed and as `beauty`, `influence` as the one channel Y.
+    write_exr(frame_file_name(dir, "ball", 0, "exr"), frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence}}));
+    const std::string html = report_of(dir);
+    EXPECT_EQ(count(html, "data-layer=\"beauty\""), 1u);
+    EXPECT_EQ(count(html, "<figure class=\"aov\" data-layer=\"influence\">"), 1u);
+    EXPECT_EQ(count(html, "<figure class=\"aov\""), 3u);
+    EXPECT_EQ(count(html, "aov-skipped"), 0u);
 }
 
 TEST(Report, FramesWithoutStatisticsAreShownButNotPlotted) {

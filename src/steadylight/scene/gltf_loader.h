@@ -15,6 +15,19 @@ namespace steadylight {
 /// Adds the glTF file's materials and objects to `desc`; when `desc` has no camera yet
 /// (`has_camera` false) and the file has one, it becomes the scene's camera. Returns the length
 /// of the file's longest animation in seconds (0 when nothing is animated).
+/// A file with animation keys sampled evenly at a common frame rate (as Blender exports by
+/// default) sets `desc.fps` to that rate.
 float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera);
+
+/// True for a path ending in .gltf or .glb (in any case).
+bool is_gltf_file(const std::string& path);
+
+/// The frames that cover an animation of `duration_s` at `fps`: 1 + floor(duration_s * fps).
+int frames_covering(float duration_s, float fps);
+
+/// A whole scene from one glTF file (`steadylight render scene.glb`): its objects, lights and
+/// camera (which it must have), frames covering its longest animation at its sampled key rate
+/// or 24 fps, named after the file. Throws InputError like load_scene_desc.
+SceneDesc load_gltf_scene_desc(const std::string& path);
 
 }  // namespace steadylight

@@ -447,7 +447,7 @@ TEST_F(GltfLoader, SpotLightBecomesPointLightDesc) {
         EXPECT_EQ(spot.type, PointLightType::spot);
         expect_near(spot.position, {0, 3, 0});
         expect_near(spot.direction, {0, -1, 0});
-        expect_near(spot.intensity, {10, 5, 5});
+        expect_near(spot.intensity, Rgb{10, 5, 5} / 683.0f);  // candela to W/sr at 683 lm/W
         EXPECT_NEAR(spot.cone_angle_deg, 45, 1e-4);
         EXPECT_NEAR(spot.falloff_start_deg, 22.5, 1e-4);
     }
@@ -566,6 +566,54 @@ TEST_F(GltfLoader, JsonSceneIncludesGltfRelativeToItselfAndOverridesTheResolutio
     EXPECT_EQ(desc.camera.height, 480);
     EXPECT_NEAR(desc.camera.fov_y_deg, 60, 1e-4);
     expect_near(evaluate_chain(desc.camera.placement, 0).point({}), {0, 1, 5});
+}
+
+/// `count` key times `1 / fps` apart from `start_s`, and translations along x for them.
+std::pair<std::vector<float>, std::vector<float>> sampled_keys(float fps, int count, float start_s) {
+    std::vector<float> times, values;
+    for (int k = 0; k < count; ++k) {
+        times.push_back(start_s + float(k) / fps);
+        values.insert(values.end(), {float(k), 0, 0});
+    }
+    return {times, values};
+}
+
+TEST_F(GltfLoader, GlbRendersAsAWholeSceneAtTheRateItsKeysWereSampledAt) {
+    tinygltf::Model model = camera_model();
+    const int node = add_node(model, make_node("Cube", add_triangle_mesh(model)));
+    const auto [times, values] = sampled_keys(30, 24, 1 / 30.0f);  // Blender: frames 1-24 at 30 fps
+    add_animation(model, node, "translation", "LINEAR", times, values);
+    write(model, "blender.glb");
+    const SceneDesc desc = load_scene_desc((m_dir / "blender.glb").string());
+    EXPECT_EQ(desc.name, "blender");
+    EXPECT_FLOAT_EQ(desc.fps, 30);
+    EXPECT_EQ(desc.frame_count, 25);  // 0.8 s at 30 fps, both ends included
+    EXPECT_TRUE(find_object(desc, "Cube").is_dynamic());
+}
+
+TEST_F(GltfLoader, UnevenOrRareKeysKeepTheDefaultRate) {
+    tinygltf::Model model = camera_model();
+    const int a = add_node(model, make_node("A", add_triangle_mesh(model)));
+    add_animation(model, a, "translation", "LINEAR", {0, 1, 2}, {0, 0, 0, 1, 0, 0, 2, 0, 0});  // 1 fps
+    write(model, "rare.glb");
+    EXPECT_FLOAT_EQ(load_scene_desc((m_dir / "rare.glb").string()).fps, 24);
+    const auto [times, values] = sampled_keys(25, 10, 0);
+    const int b = add_node(model, make_node("B", add_triangle_mesh(model)));
+    add_animation(model, b, "translation", "LINEAR", times, values);  // 25 fps disagrees with 1 fps
+    write(model, "mixed.glb");
+    EXPECT_FLOAT_EQ(load_scene_desc((m_dir / "mixed.glb").string()).fps, 24);
+}
+
+TEST_F(GltfLoader, GlbWithoutCameraCannotBeAScene) {
+    tinygltf::Model model;
+    add_node(model, make_node("Tri", add_triangle_mesh(model)));
+    const std::string path = write(model, "nocamera.glb");
+    try {
+        load_scene_desc(path);
+        ADD_FAILURE() << "loaded without an error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("nocamera.glb: the file has no perspective camera"), std::string::npos) << e.what();
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -284,6 +284,7 @@ void validate(const SceneDesc& desc) {
 }
 
 SceneDesc load_scene_desc(const std::string& path) {
+    if (is_gltf_file(path)) return load_gltf_scene_desc(path);
     const nlohmann::json root_json = parse_json_file(path);
     const JsonObject root(root_json, path, "");
     SceneDesc desc;
@@ -299,11 +300,11 @@ SceneDesc load_scene_desc(const std::string& path) {
         const JsonObject frames = root.object("frames");
         desc.fps = frames.number("fps", desc.fps);
         if (!(desc.fps > 0)) frames.fail("fps", "must be positive");
-        desc.frame_count = frames.integer("count", 1 + int(std::floor(gltf_duration_s * desc.fps + 1e-3f)));
+        desc.frame_count = frames.integer("count", frames_covering(gltf_duration_s, desc.fps));
         if (desc.frame_count < 1) frames.fail("count", "must be at least 1");
         frames.warn_unread();
     } else if (gltf_duration_s > 0) {
-        desc.frame_count = 1 + int(std::floor(gltf_duration_s * desc.fps + 1e-3f));
+        desc.frame_count = frames_covering(gltf_duration_s, desc.fps);
     }
 
     if (root.has("segments")) {

@@ -87,7 +87,8 @@ struct SceneDesc {
     float frame_time_s(int frame) const { return float(frame) / fps; }
 };
 
-/// Loads a JSON scene (docs/scene-format.md); relative paths are relative to the file.
+/// Loads a JSON scene (docs/scene-format.md), or a .gltf/.glb file as a whole scene
+/// (docs/gltf.md); relative paths are relative to the file.
 /// Throws InputError naming the file and the JSON pointer of anything wrong.
 SceneDesc load_scene_desc(const std::string& path);
 

@@ -1,0 +1,71 @@
+// The view transform for 8-bit outputs (view_transform.h).
+#include "steadylight/output/view_transform.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "steadylight/base/error.h"
+#include "steadylight/base/rng.h"
+
+namespace steadylight {
+namespace {
+
+/// Hable's curve before normalisation, with the constants of his GDC 2010 talk: shoulder
+/// strength A, linear strength B, linear angle C, toe strength D, toe numerator E, toe
+/// denominator F. f(0) = DE/DF - E/F = 0.
+float hable(float x) {
+    constexpr float A = 0.15f, B = 0.50f, C = 0.10f, D = 0.20f, E = 0.02f, F = 0.30f;
+    return (x * (A * x + C * B) + D * E) / (x * (A * x + B) + D * F) - E / F;
+}
+
+constexpr float hable_exposure_bias = 2.0f;  // from the talk's sample code
+constexpr float hable_white = 11.2f;         // linear white point W of the talk
+
+/// A fixed dither offset in [-0.5, 0.5) of one code value for pixel (x, y), channel c.
+float dither_offset(int x, int y, int c) {
+    const uint64_t h = hash_ids(uint64_t(x), uint64_t(y), uint64_t(c), 0x5344495448ull);
+    return float(h >> 40) / float(1 << 24) - 0.5f;
+}
+
+}  // namespace
+
+ViewCurve parse_view_curve(const std::string& name, const std::string& option) {
+    if (name == "standard") return ViewCurve::standard;
+    if (name == "filmic") return ViewCurve::filmic;
+    throw InputError(option, "unknown view transform \"" + name + "\" (standard or filmic)");
+}
+
+float apply_exposure(float v, float exposure_ev) { return v * std::exp2(exposure_ev); }
+
+float filmic_curve(float v) {
+    static const float white_scale = 1 / hable(hable_white);
+    if (!(v > 0)) return 0;   // also NaN
+    if (v > 1e6f) return 1;   // also infinity, where the rational function gives inf/inf
+    return std::min(1.0f, hable(hable_exposure_bias * std::max(v, 0.0f)) * white_scale);
+}
+
+float apply_view_curve(float v, ViewCurve curve) {
+    if (curve == ViewCurve::filmic) return filmic_curve(v);
+    return std::clamp(v, 0.0f, 1.0f);
+}
+
+float linear_to_srgb(float v) {
+    v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+}
+
+std::vector<unsigned char> encode_srgb8(const Image& image, const ViewTransform& transform) {
+    std::vector<unsigned char> bytes(image.pixels.size() * 3);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float linear = apply_exposure(image.at(x, y)[c], transform.exposure_ev);
+                float code = 255 * linear_to_srgb(apply_view_curve(linear, transform.curve));
+                if (transform.dither) code += dither_offset(x, y, c);
+                const size_t i = (size_t(y) * size_t(image.width) + size_t(x)) * 3 + size_t(c);
+                bytes[i] = static_cast<unsigned char>(std::clamp(std::lround(code), 0L, 255L));
+            }
+    return bytes;
+}
+
+}  // namespace steadylight
