@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     std::printf("\nphoton mapping, BALL frame 0, 320x240, default settings\n");
     std::printf("  photon tracing                              %7.3f s  (%ld global, %ld caustic photons stored)\n",
                 s.photon_tracing_s, s.global_photons_stored, s.caustic_photons_stored);
-    std::printf("  irradiance cache (final gathering)          %7.3f s  (%ld records, %.2fM gather rays)\n", s.cache_s,
+    std::printf("  irradiance at photons + cache (gathering)   %7.3f s  (%ld records, %.2fM gather rays)\n", s.cache_s,
                 s.irradiance_records, double(s.gather_rays) / 1e6);
     std::printf("  shading (direct, look-ups, specular)        %7.3f s  (caustics %.3f s cpu)\n", s.direct_s, s.caustics_s);
     std::printf("  total                                       %7.3f s\n", s.total_s);

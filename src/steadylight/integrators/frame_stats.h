@@ -22,9 +22,9 @@ struct FrameStats {
     long static_records = 0;          // localized: records of the segment's static cache
     long fallback_gathers = 0;        // gathers at points the cache did not cover
     long gather_rays = 0;
-    double photon_tracing_s = 0;      // tracing the photon maps (photon: and precomputing irradiance at photons;
-                                      // localized computes it lazily, in the L_y phase)
-    double cache_s = 0;               // building this frame's irradiance cache (localized: L_y)
+    double photon_tracing_s = 0;      // tracing the photon maps
+    double cache_s = 0;               // building this frame's irradiance cache (localized: L_y), including
+                                      // the irradiance at photons its gathers read (photon: all, up front)
     double influence_s = 0;           // localized: the influence I of the dynamic objects
     double correction_s = 0;          // localized: correcting the static records by the dynamic map (L_t)
     double direct_s = 0;              // shading pass: direct light, cache look-ups, specular

@@ -126,7 +126,7 @@ void add_geometry(Hasher& h, const Geometry& geometry) {
 
 uint64_t static_inputs_hash(const Scene& scene, int first, int last, const LocalizedSettings& settings) {
     Hasher h;
-    h.add("steadylight static cache 1");  // change when the algorithm changes what it computes
+    h.add("steadylight static cache 2");  // change when the algorithm changes what it computes
     const FrameState state = scene.evaluate(first);
     for (const int i : scene.static_objects()) {
         const ObjectDesc& object = scene.object(i);

@@ -36,18 +36,19 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.method = "photon";
     stats.frame = context.frame.frame;
 
-    // Pass 1: photons, and irradiance precomputed at a share of the global ones.
+    // Pass 1: photons.
     begin_phase("photons");
     Stopwatch phase;
     const FramePhotons traced(context, settings, stats);
+    stats.photon_tracing_s = phase.elapsed_s();
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance_photons = traced.irradiance;
-    irradiance_photons.compute_all();  // the gathers over the whole image need nearly all
-    stats.photon_tracing_s = phase.elapsed_s();
 
-    // Pass 2a: the irradiance cache over the image, by final gathering.
+    // Pass 2a: irradiance precomputed at a share of the global photons, then the irradiance
+    // cache over the image by final gathering.
     begin_phase("irradiance cache");
     phase = Stopwatch();
+    irradiance_photons.compute_all();  // the gathers over the whole image need nearly all
     IrradianceCache cache(settings.cache);
     const float max_radius = settings.irradiance_estimate.max_radius;
     const CacheBuildStats built = build_photon_cache(

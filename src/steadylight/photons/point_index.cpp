@@ -11,7 +11,7 @@ namespace steadylight {
 namespace {
 
 // Ranges this small are leaves, scanned point by point.
-constexpr uint32_t leaf_size = 8;
+constexpr uint32_t leaf_size = 16;
 // Ranges this large build their two halves in parallel (the result does not depend on it).
 constexpr uint32_t parallel_build_size = 32 * 1024;
 
@@ -72,6 +72,28 @@ private:
     float m_radius2;
 };
 
+/// The nearest neighbour so far (k = 1, the irradiance-photon look-up of every gather ray):
+/// the heap's job without a heap.
+class NearestOne {
+public:
+    explicit NearestOne(float max_distance2) : m_radius2(max_distance2) {}
+
+    float radius2() const { return m_radius2; }
+    int size() const { return m_found ? 1 : 0; }
+    const Neighbour& best() const { return m_best; }
+
+    void offer(uint32_t index, float distance2) {
+        if (distance2 > m_radius2) return;
+        const Neighbour candidate{index, distance2};
+        if (!m_found || nearer(candidate, m_best)) m_best = candidate, m_radius2 = distance2, m_found = true;
+    }
+
+private:
+    Neighbour m_best{0, 0};
+    float m_radius2;
+    bool m_found = false;
+};
+
 int widest_axis(Vec3 lower, Vec3 upper) {
     const Vec3 extent = upper - lower;
     return extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
@@ -89,6 +111,7 @@ PointIndex::PointIndex(const std::vector<Vec3>& points) {
         lower = min(lower, points[i]), upper = max(upper, points[i]);
     }
     m_axis.assign(points.size(), 0);
+    m_split.assign(points.size(), 0.0f);
     build(0, uint32_t(points.size()), lower, upper);
 }
 
@@ -100,10 +123,11 @@ void PointIndex::build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper) {
     std::nth_element(m_entries.begin() + begin, m_entries.begin() + mid, m_entries.begin() + end,
                      [axis](const Entry& a, const Entry& b) { return a.p[axis] != b.p[axis] ? a.p[axis] < b.p[axis] : a.id < b.id; });
     m_axis[mid] = uint8_t(axis);
+    m_split[mid] = m_entries[mid].p[axis];
     Vec3 left_upper = upper, right_lower = lower;
-    left_upper[axis] = right_lower[axis] = m_entries[mid].p[axis];
+    left_upper[axis] = right_lower[axis] = m_split[mid];
     const auto left = [&] { build(begin, mid, lower, left_upper); };
-    const auto right = [&] { build(mid + 1, end, right_lower, upper); };
+    const auto right = [&] { build(mid, end, right_lower, upper); };
     if (end - begin >= parallel_build_size) {
         tbb::parallel_invoke(left, right);
     } else {
@@ -124,14 +148,13 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
     // distance to the last plane alone.
     while (end - begin > leaf_size) {
         const uint32_t mid = begin + (end - begin) / 2;
-        offer(m_entries[mid]);
         const int axis = m_axis[mid];
-        const float d = p[axis] - m_entries[mid].p[axis];
+        const float d = p[axis] - m_split[mid];
         if (d < 0) {
             search(begin, mid, p, cell, heap);
-            begin = mid + 1;
+            begin = mid;
         } else {
-            search(mid + 1, end, p, cell, heap);
+            search(mid, end, p, cell, heap);
             end = mid;
         }
         const float offset = cell.offset[axis];
@@ -145,9 +168,15 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
 void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {
     out.clear();
     if (m_entries.empty() || k <= 0) return;
+    const float query[3] = {p.x, p.y, p.z};
+    if (k == 1) {
+        NearestOne nearest(max_distance2);
+        search(0, uint32_t(m_entries.size()), query, CellDistance{}, nearest);
+        if (nearest.size()) out.push_back(nearest.best());
+        return;
+    }
     out.resize(size_t(k));
     BoundedHeap heap(out.data(), k, max_distance2);
-    const float query[3] = {p.x, p.y, p.z};
     search(0, uint32_t(m_entries.size()), query, CellDistance{}, heap);
     heap.sort();
     out.resize(size_t(heap.size()));

@@ -2,11 +2,12 @@
 // maps and the irradiance photons use it; results are sorted by distance, ties broken by index,
 // so queries are deterministic.
 //
-// It is our own rather than nanoflann's: a balanced tree in an implicit layout (the median of
-// every range is its node, no pointers) searched with a bounded max-heap that starts at the
-// query radius. nanoflann's kNN ignores the radius and inserts every candidate in O(k); for the
-// k = 50..300 estimates of photon mapping this tree answers 2-4x faster (bench/point_index_bench,
-// README "Benchmarks").
+// It is our own rather than nanoflann's: a balanced tree in an implicit layout (every range
+// splits at its median, no pointers) searched with a bounded max-heap that starts at the
+// query radius, pruning by the exact distance to each cell. nanoflann's kNN ignores the radius
+// and inserts every candidate in O(k): for the k = 50 and 300 estimates of photon mapping this
+// tree answers 1.3x and 2x faster, and about as fast for k <= 8 (bench/point_index_bench, README
+// "Benchmarks").
 #pragma once
 
 #include <cstdint>
@@ -50,7 +51,10 @@ private:
     void search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap) const;
 
     std::vector<Entry> m_entries;    // in tree order
-    std::vector<uint8_t> m_axis;     // split axis of the node at the middle of each split range
+    // A range [begin, end) longer than a leaf splits at mid = (begin + end) / 2 into [begin, mid)
+    // (coordinates <= the split value) and [mid, end) (>=); its axis and value are kept at mid.
+    std::vector<uint8_t> m_axis;
+    std::vector<float> m_split;
 };
 
 }  // namespace steadylight
