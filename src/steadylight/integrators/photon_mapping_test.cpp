@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "steadylight/integrators/photon_gather.h"
 #include "steadylight/output/image_writer.h"
 
 namespace steadylight {
@@ -99,6 +100,32 @@ TEST(PhotonMapping, TableShowsACausticUnderTheGlassSphere) {
     const Vec3 p = ray.o + ray.d * hit->t;
     EXPECT_NEAR(p.y, 0.80f, 0.01f);
     EXPECT_LT(length(Vec3{p.x - 4.6f, 0, p.z - 3.3f}), 0.6f) << to_string(p);
+}
+
+// What the camera sees through TABLE's glass sphere gets cache records like the rest: a pixel
+// whose centre sees the glass has its cache point on the diffuse surface behind it, so its camera
+// rays find records there instead of each gathering anew (which cost about 6 s a frame).
+TEST(PhotonMapping, PointsSeenThroughGlassAreCached) {
+    const Scene scene = load_scene("table", 64, 48);
+    const PreparedFrame frame(scene, 0);
+    const FrameContext& context = frame.context();
+    int through_glass = 0, cached = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const std::optional<Hit> hit = context.tracer.intersect(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f));
+            if (!hit || !context.bsdf_of(hit->object).is_delta()) continue;
+            ++through_glass;
+            const std::optional<CachePoint> point = cache_point_at(context, Visibility::everything, x, y);
+            if (!point) continue;
+            EXPECT_TRUE(context.bsdf_of(point->object).is_diffuse());
+            EXPECT_NE(point->object, hit->object);
+            cached += 1;
+        }
+    ASSERT_GT(through_glass, 20);
+    EXPECT_GT(cached, through_glass * 9 / 10);
+    const PhotonFrame shaded = render(scene, 0, test_settings());
+    // Only the camera rays that take the glass's reflected branch (a few percent) may gather.
+    EXPECT_LT(shaded.stats.fallback_gathers, through_glass * test_settings().shading.samples_per_pixel / 10);
 }
 
 TEST(PhotonMapping, SameFrameTwiceAndOnOneOrTwoThreadsIsBitIdentical) {
