@@ -5,7 +5,11 @@
 // absolute frame-to-frame change of luminance over the pixels no dynamic object ever covers,
 // relative to their mean luminance), split into the change of the direct light (the same in
 // every method: moving shadows) and of the indirect light. Prints, asserts nothing.
-// Run: build/animation_bench [--scenes ball,table] [--frames N] [--size WxH]
+// With `--reference 1` it also renders the photon method at 5x the photons and 4x the gather
+// rays, as a stand-in for the converged animation, and reports each method's temporal noise:
+// the frame-to-frame change of (method - reference), which leaves out the real change of the
+// lighting that the flicker figure counts.
+// Run: build/animation_bench [--scenes ball,table] [--frames N] [--size WxH] [--reference 1]
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +26,7 @@ struct Options {
     std::vector<std::string> scenes{"ball", "table"};
     int frames = 60;
     int width = 320, height = 240;
+    bool reference = false;
 };
 
 Options parse(int argc, char** argv) {
@@ -29,6 +34,7 @@ Options parse(int argc, char** argv) {
     for (int i = 1; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--frames")) o.frames = std::atoi(argv[i + 1]);
         if (!std::strcmp(argv[i], "--size")) std::sscanf(argv[i + 1], "%dx%d", &o.width, &o.height);
+        if (!std::strcmp(argv[i], "--reference")) o.reference = std::atoi(argv[i + 1]) != 0;
         if (!std::strcmp(argv[i], "--scenes")) {
             o.scenes.clear();
             std::stringstream list(argv[i + 1]);
@@ -97,6 +103,21 @@ double flicker(const std::vector<Image>& layers, const std::vector<Image>& image
     return level > 0 ? change / level : 0;
 }
 
+/// Mean absolute frame-to-frame change of (shown luminance of `images` - that of `reference`)
+/// over the never-covered pixels, relative to the reference's mean shown luminance there.
+double temporal_noise(const std::vector<Image>& images, const std::vector<Image>& reference, const std::vector<bool>& covered) {
+    double change = 0, level = 0;
+    for (size_t f = 1; f < images.size(); ++f)
+        for (size_t i = 0; i < covered.size(); ++i) {
+            if (covered[i]) continue;
+            const auto error = [&](size_t frame) {
+                return shown_luminance(images[frame].pixels[i]) - shown_luminance(reference[frame].pixels[i]);
+            };
+            change += std::abs(error(f) - error(f - 1)), level += shown_luminance(reference[f].pixels[i]);
+        }
+    return level > 0 ? change / level : 0;
+}
+
 Image sum(const Image& a, const Image& b) {
     Image out = a;
     for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] += b.pixels[i];
@@ -117,7 +138,12 @@ void run_scene(const std::string& name, const Options& options) {
     const StaticSolution solution = run_segment_pass(scene, tracer, 0, scene.frame_count() - 1, localized);
     const double static_s = static_time.elapsed_s();
     std::map<std::string, Totals> totals;
-    std::vector<Image> direct;  // the same in every method
+    std::vector<Image> direct;     // the same in every method
+    std::vector<Image> reference;  // --reference: the photon method with 5x photons, 4x gather rays
+    PhotonMappingSettings reference_settings = localized.base;
+    reference_settings.photons.global_photons *= 5;
+    reference_settings.photons.caustic_photons *= 5;
+    reference_settings.gather.theta_strata *= 2, reference_settings.gather.phi_strata *= 2;
     for (int f = 0; f < frames; ++f) {
         const FrameState state = scene.evaluate(f);
         tracer.set_frame(state);
@@ -131,6 +157,7 @@ void run_scene(const std::string& name, const Options& options) {
         totals["frozen"].add(freeze.stats);
         totals["localized"].rmse_vs_photon += relative_rmse(local.beauty, photon.beauty);
         totals["frozen"].rmse_vs_photon += relative_rmse(freeze.beauty, photon.beauty);
+        if (options.reference) reference.push_back(render_photon_mapped(context, reference_settings).beauty);
         direct.push_back(std::move(photon.direct));
         totals["photon"].indirect.push_back(sum(photon.indirect, photon.caustic));
         totals["localized"].indirect.push_back(sum(local.indirect, local.caustic));
@@ -169,6 +196,11 @@ void run_scene(const std::string& name, const Options& options) {
                 totals["photon"].indirect_flicker, totals["frozen"].indirect_flicker, totals["localized"].indirect_flicker);
     std::printf("%-24s %12.5f %12.5f %12.5f   (direct layer's change: the same in every method)\n", "  of it direct",
                 direct_flicker, direct_flicker, direct_flicker);
+    if (options.reference)
+        std::printf("%-24s %12.5f %12.5f %12.5f   (change of the difference from a 5x-photon, 4x-gather photon render)\n",
+                    "temporal noise", temporal_noise(totals["photon"].images, reference, covered),
+                    temporal_noise(totals["frozen"].images, reference, covered),
+                    temporal_noise(totals["localized"].images, reference, covered));
     std::printf("%-24s %12.2f s (static pass + frames)\n", "localized animation",
                 static_s + totals["localized"].total_s);
 }
