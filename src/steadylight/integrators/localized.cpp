@@ -215,16 +215,13 @@ LocalizedFrame render_localized(const FrameContext& context, const StaticSolutio
     stats.static_records = solution.records;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
-    begin_phase("photons");
-    Stopwatch phase;
     const FramePhotons traced(context, base, stats);
-    stats.photon_tracing_s = phase.elapsed_s();
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance = traced.irradiance;
 
     // Influence of the dynamic objects on each pixel's point.
     begin_phase("influence");
-    phase = Stopwatch();
+    Stopwatch phase;
     const InfluenceMap influence = settings.frozen ? InfluenceMap{} : estimate_influence(context, photons.dynamic, solution.cache, settings);
     stats.influence_s = phase.elapsed_s();
 

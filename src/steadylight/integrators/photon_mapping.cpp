@@ -19,15 +19,27 @@ Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3
     return g.record.E;
 }
 
-FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats)
-    : maps(trace_photons(context, settings.photons)),
-      irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate) {
+namespace {
+
+/// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
+TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats) {
+    begin_phase("photons");
+    const Stopwatch time;
+    TracedPhotons maps = trace_photons(context, settings.photons);
+    stats.photon_tracing_s = time.elapsed_s();
     stats.global_photons_emitted = maps.global.emitted();
     stats.global_photons_stored = long(maps.global.size());
     stats.caustic_photons_emitted = maps.caustic.emitted();
     stats.caustic_photons_stored = long(maps.caustic.size());
     stats.dynamic_photons_stored = long(maps.dynamic.size());
+    return maps;
 }
+
+}  // namespace
+
+FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats)
+    : maps(trace_counted_photons(context, settings, stats)),
+      irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate) {}
 
 PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings) {
     const Stopwatch total;
@@ -37,17 +49,14 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.frame = context.frame.frame;
 
     // Pass 1: photons.
-    begin_phase("photons");
-    Stopwatch phase;
     const FramePhotons traced(context, settings, stats);
-    stats.photon_tracing_s = phase.elapsed_s();
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance_photons = traced.irradiance;
 
     // Pass 2a: irradiance precomputed at a share of the global photons, then the irradiance
     // cache over the image by final gathering.
     begin_phase("irradiance cache");
-    phase = Stopwatch();
+    Stopwatch phase;
     irradiance_photons.compute_all();  // the gathers over the whole image need nearly all
     IrradianceCache cache(settings.cache);
     const float max_radius = settings.irradiance_estimate.max_radius;
