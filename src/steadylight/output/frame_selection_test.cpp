@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "steadylight/base/error.h"
+#include "support/input_error.h"
 
 namespace steadylight {
 namespace {
@@ -14,12 +15,7 @@ std::vector<int> frames_of(const std::string& text, int frame_count = 100) {
 
 /// The InputError message for `text`, or "" when it parses and fits 100 frames.
 std::string error_of(const std::string& text) {
-    try {
-        frames_of(text);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
+    return testing::input_error_of([&] { frames_of(text); });
 }
 
 TEST(FrameSelection, NoSpansSelectsEveryFrame) {

@@ -8,6 +8,7 @@
 #include <regex>
 
 #include "steadylight/base/error.h"
+#include "support/input_error.h"
 #include "steadylight/integrators/frame_stats.h"
 #include "steadylight/output/atomic_file.h"
 #include "steadylight/output/frame_layers.h"
@@ -73,12 +74,7 @@ std::string report_of(const std::string& dir, std::optional<int> frame = std::nu
 
 /// The message of the InputError that reporting on `dir` throws, or "" when it throws none.
 std::string report_error(const std::string& dir) {
-    try {
-        report_of(dir);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
+    return testing::input_error_of([&] { report_of(dir); });
 }
 
 TEST(Report, Base64MatchesRfc4648) {
