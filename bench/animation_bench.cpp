@@ -16,7 +16,9 @@
 #include <map>
 #include <sstream>
 
-#include "steadylight/integrators/localized.h"
+#include "steadylight/base/stopwatch.h"
+#include "steadylight/methods/photon_mapping.h"
+#include "steadylight/passes/frame_pass.h"
 
 using namespace steadylight;
 
@@ -129,29 +131,26 @@ void run_scene(const std::string& name, const Options& options) {
     scene.set_resolution(options.width, options.height);
     const int frames = std::min(options.frames, scene.frame_count());
     RayTracer tracer(scene, scene.evaluate(0));
-    const auto bsdfs = make_bsdfs(scene);
-    LocalizedSettings localized;
-    LocalizedSettings frozen = localized;
-    frozen.frozen = true;
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PhotonMappingSettings photon_settings;
+    const LocalizedSettings localized;
 
     const Stopwatch static_time;
-    const StaticSolution solution = run_segment_pass(scene, tracer, 0, scene.frame_count() - 1, localized);
+    const StaticSolution solution{run_segment_pass(scene, tracer, {0, scene.frame_count() - 1}, photon_settings)};
     const double static_s = static_time.elapsed_s();
     std::map<std::string, Totals> totals;
     std::vector<Image> direct;     // the same in every method
     std::vector<Image> reference;  // --reference: the photon method with 5x photons, 4x gather rays
-    PhotonMappingSettings reference_settings = localized.base;
+    PhotonMappingSettings reference_settings = photon_settings;
     reference_settings.photons.global_photons *= 5;
     reference_settings.photons.caustic_photons *= 5;
     reference_settings.gather.theta_strata *= 2, reference_settings.gather.phi_strata *= 2;
     for (int f = 0; f < frames; ++f) {
-        const FrameState state = scene.evaluate(f);
-        tracer.set_frame(state);
-        const LightSet lights(scene, state);
-        const FrameContext context{scene, state, tracer, lights, bsdfs};
-        PhotonFrame photon = render_photon_mapped(context, localized.base);
-        LocalizedFrame local = render_localized(context, solution, localized);
-        LocalizedFrame freeze = render_localized(context, solution, frozen);
+        const PlacedFrame placed(scene, tracer, bsdfs, f);
+        const FrameContext& context = placed.context();
+        PhotonFrame photon = render_photon_mapped(context, photon_settings);
+        LocalizedFrame local = run_frame_pass(context, solution, photon_settings, localized, StaticCacheUse::corrected);
+        LocalizedFrame freeze = run_frame_pass(context, solution, photon_settings, localized, StaticCacheUse::frozen);
         totals["photon"].add(photon.stats);
         totals["localized"].add(local.stats);
         totals["frozen"].add(freeze.stats);
@@ -176,7 +175,7 @@ void run_scene(const std::string& name, const Options& options) {
     const double direct_flicker = flicker(direct, totals["photon"].images, covered, false);
 
     std::printf("\n%s, %dx%d, %d frames; static pass %.2f s (%ld records)\n", name.c_str(), options.width, options.height,
-                frames, static_s, solution.records);
+                frames, static_s, solution.records());
     std::printf("per frame (means)        %12s %12s %12s   photon/localized\n", "photon", "frozen", "localized");
     const auto row = [&](const char* label, auto get) {
         const double p = get(totals["photon"]) / frames, z = get(totals["frozen"]) / frames, l = get(totals["localized"]) / frames;

@@ -9,8 +9,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "steadylight/integrators/path_tracer.h"
-#include "steadylight/integrators/photon_mapping.h"
+#include "steadylight/base/stopwatch.h"
+#include "steadylight/methods/path_tracer.h"
+#include "steadylight/methods/photon_mapping.h"
 #include "steadylight/output/image_writer.h"
 
 using namespace steadylight;

@@ -9,8 +9,8 @@
 
 #include <cstdio>
 
-#include "steadylight/integrators/frame_context.h"
-#include "steadylight/integrators/frame_stats.h"
+#include "steadylight/shading/frame_context.h"
+#include "steadylight/base/stopwatch.h"
 #include "steadylight/photons/photon_tracer.h"
 
 using namespace steadylight;

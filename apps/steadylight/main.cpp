@@ -1,7 +1,8 @@
 // The steadylight command line: parses flags into RenderSettings and calls the library.
 // Errors are caught once, here: the message goes to stderr and the exit code is 1; Ctrl-C ends
-// a render cleanly with exit code 130 (output/interrupt.h).
+// a render cleanly with exit code 130 (run/interrupt.h).
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -13,8 +14,8 @@
 
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
-#include "steadylight/output/console.h"
-#include "steadylight/output/interrupt.h"
+#include "steadylight/run/console.h"
+#include "steadylight/run/interrupt.h"
 #include "steadylight/render.h"
 #include "steadylight/report/report.h"
 
@@ -38,6 +39,7 @@ struct RawOptions {
     std::optional<int> spp;
     int threads = 0;
     int gather_samples = 0;
+    std::string method = std::string(method_info(Method::localized).name);
     std::string exr_type = "half", view_transform = "standard";
 };
 
@@ -97,6 +99,20 @@ void print_interrupted(const RenderSummary& summary, bool overwrite) {
                  format_frame_list(summary.frames_left).c_str(), overwrite ? " without --overwrite" : "");
 }
 
+/// "localized: the paper's method; photon: ..." from the method table.
+std::string method_help() {
+    std::string help;
+    for (const MethodInfo& info : methods())
+        help += fmt::format("{}{}: {}", help.empty() ? "" : "; ", info.name, info.description);
+    return help;
+}
+
+std::vector<std::string> method_name_list() {
+    std::vector<std::string> names;
+    for (const MethodInfo& info : methods()) names.emplace_back(info.name);
+    return names;
+}
+
 /// Checks and converts what add_method_options and the render options read.
 void finish_settings(const RawOptions& raw, RenderSettings& settings) {
     if (raw.frames) settings.frames = parse_frame_selection(*raw.frames);
@@ -106,10 +122,7 @@ void finish_settings(const RawOptions& raw, RenderSettings& settings) {
     if (raw.spp) settings.path.samples_per_pixel = settings.photon.shading.samples_per_pixel = *raw.spp;
     settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(raw.gather_samples / 2.0))));
     settings.photon.gather.phi_strata = 2 * settings.photon.gather.theta_strata;
-    if (settings.photon.cache.max_spacing_px < settings.photon.cache.min_spacing_px)
-        throw InputError("--cache-max-spacing", "must not be smaller than --cache-spacing");
-    if (!(settings.localized.tau_lower < settings.localized.tau_upper))
-        throw InputError("--tau-upper", "must be larger than --tau-lower");
+    settings.method = parse_method(raw.method, "--method");
 }
 
 }  // namespace
@@ -127,10 +140,8 @@ int main(int argc, char** argv) {
     render->add_flag("--overwrite", settings.overwrite, "Render frames again whose outputs are complete already");
     render->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
         ->check(CLI::Range(1, 1 << 20));
-    render->add_option("--method,--integrator", settings.method,
-                       "localized: the paper's method; photon: photon mapping every frame from scratch; "
-                       "frozen: static cache reused as it is; path: path-traced ground truth")
-        ->capture_default_str()->check(CLI::IsMember({"localized", "photon", "frozen", "path"}));
+    render->add_option("--method,--integrator", raw.method, method_help())
+        ->capture_default_str()->check(CLI::IsMember(method_name_list()));
     render->add_option("--direct-samples", settings.photon.shading.direct_samples,
                        "shadow rays per diffuse hit and camera ray")
         ->capture_default_str()->check(CLI::Range(1, 4096));

@@ -1,6 +1,5 @@
 #include "steadylight/render.h"
 
-#include <chrono>
 #include <csignal>
 #include <filesystem>
 
@@ -8,26 +7,20 @@
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
+#include "steadylight/base/atomic_file.h"
 #include "steadylight/base/checkpoint.h"
-#include "steadylight/base/error.h"
-#include "steadylight/output/atomic_file.h"
-#include "steadylight/output/console.h"
+#include "steadylight/base/stopwatch.h"
 #include "steadylight/output/frame_layers.h"
-#include "steadylight/output/frame_manifest.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
-#include "steadylight/output/interrupt.h"
-#include "steadylight/output/settings_file.h"
 #include "steadylight/output/video.h"
+#include "steadylight/run/console.h"
+#include "steadylight/run/frame_manifest.h"
+#include "steadylight/run/interrupt.h"
+#include "steadylight/run/settings_file.h"
 
 namespace steadylight {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 Scene load_scene(const RenderSettings& settings) {
     Scene scene(load_scene_desc(settings.scene_file));
@@ -36,75 +29,10 @@ Scene load_scene(const RenderSettings& settings) {
     return scene;
 }
 
-/// A finished frame: the image, its layers for the EXR, and statistics when the method has any.
-struct RenderedFrame {
-    Image beauty;
-    std::vector<std::pair<std::string, Image>> layers;
-    std::optional<FrameStats> stats;
-};
-
-bool is_localized(const RenderSettings& settings) { return settings.method == "localized" || settings.method == "frozen"; }
-
-LocalizedSettings localized_settings(const RenderSettings& settings) {
-    LocalizedSettings localized = settings.localized;
-    localized.base = settings.photon;
-    localized.frozen = settings.method == "frozen";
-    return localized;
-}
-
-/// `<out>/<scene>.irrcache`, or `--cache-file`; with several segments each gets its frames added:
-/// `<scene>_0000-0029.irrcache`.
-std::string cache_file_of(const RenderSettings& settings, const Scene& scene, const Segment& segment) {
-    namespace fs = std::filesystem;
-    fs::path file = settings.cache_file.empty() ? fs::path(settings.out_dir) / (scene.name() + ".irrcache")
-                                                : fs::path(settings.cache_file);
-    if (scene.segments().size() > 1)
-        file.replace_filename(fmt::format("{}_{:04d}-{:04d}{}", file.stem().string(), segment.first, segment.last,
-                                          file.extension().string()));
-    return file.string();
-}
-
 /// The segment pass of `segment`, from its cache file when that matches.
-StaticSolution static_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
-                               const Segment& segment) {
-    const std::string file = cache_file_of(settings, scene, segment);
-    StaticSolution solution = run_segment_pass(scene, tracer, segment.first, segment.last, localized_settings(settings), file);
-    if (solution.loaded)
-        spdlog::info("static cache: {} records loaded from {}", solution.records, file);
-    else
-        spdlog::info("static cache: {} records computed in {:.2f} s ({}), saved to {}", solution.records, solution.seconds,
-                     solution.file_note, file);
-    return solution;
-}
-
-RenderedFrame render_localized_frame(const RenderSettings& settings, const FrameContext& context,
-                                     const StaticSolution& solution) {
-    LocalizedFrame frame = render_localized(context, solution, localized_settings(settings));
-    return {frame.beauty,
-            {{"direct", std::move(frame.direct)},
-             {"indirect", std::move(frame.indirect)},
-             {"caustic", std::move(frame.caustic)},
-             {"specular", std::move(frame.specular)},
-             {"indirect_static", std::move(frame.indirect_static)},
-             {"L_y", std::move(frame.L_y)},
-             {"L_t", std::move(frame.L_t)},
-             {"influence", std::move(frame.influence)},
-             {"static_records", std::move(frame.static_records)},
-             {"dynamic_records", std::move(frame.dynamic_records)}},
-            frame.stats};
-}
-
-RenderedFrame render_frame(const RenderSettings& settings, const FrameContext& context, const StaticSolution* solution) {
-    if (settings.method == "path") return {render_path_traced(context, settings.path), {}, std::nullopt};
-    if (solution) return render_localized_frame(settings, context, *solution);
-    PhotonFrame frame = render_photon_mapped(context, settings.photon);
-    return {frame.beauty,
-            {{"direct", std::move(frame.direct)},
-             {"indirect", std::move(frame.indirect)},
-             {"caustic", std::move(frame.caustic)},
-             {"specular", std::move(frame.specular)},
-             {"records", std::move(frame.records)}},
-            frame.stats};
+StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
+    const std::string file = static_cache_file(settings.cache_file, settings.out_dir, scene, segment);
+    return load_or_run_segment_pass(scene, tracer, segment, settings.photon, file);
 }
 
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
@@ -113,8 +41,8 @@ void write_frame(const RenderSettings& settings, const Scene& scene, int frame, 
               frame_exr_layers(rendered.beauty, rendered.layers), output.exr_type);
     write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view);
     if (settings.aov_pngs)
-        for (const auto& [name, image] : rendered.layers)
-            write_png(frame_file_name(settings.out_dir, scene.name(), frame, name + ".png"), image, output.view);
+        for (const NamedImage& layer : rendered.layers)
+            write_png(frame_file_name(settings.out_dir, scene.name(), frame, layer.name + ".png"), layer.image, output.view);
     if (rendered.stats)
         write_text_file(frame_file_name(settings.out_dir, scene.name(), frame, "stats.json"),
                         nlohmann::json(*rendered.stats).dump(2) + "\n");
@@ -168,48 +96,60 @@ void write_frame_outputs(const RenderSettings& settings, const Scene& scene, int
     write_frame_manifest(settings.out_dir, scene.name(), frame, written.paths(), key);
 }
 
-/// Renders and writes `frames` (sorted) in order, adding each to `summary` when written.
-/// Throws RenderInterrupted at the first checkpoint after Ctrl-C.
+/// The frames of `frames` (sorted) that lie in `segment`.
+std::vector<int> frames_in(const std::vector<int>& frames, const Segment& segment) {
+    std::vector<int> inside;
+    for (const int frame : frames)
+        if (segment.first <= frame && frame <= segment.last) inside.push_back(frame);
+    return inside;
+}
+
+/// One frame: the scene placed there, the method's frame pass, the files written.
+void render_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
+                  const StaticSolution* solution, int frame, const std::string& key) {
+    const Stopwatch time;
+    const PlacedFrame placed(scene, tracer, bsdfs, frame);
+    const RenderedFrame rendered = method_info(settings.method).render_frame(placed.context(), solution, settings);
+    write_frame_outputs(settings, scene, frame, rendered, key);
+    spdlog::info("frame {:4d}  {:7.2f} s  {}{}", frame, time.elapsed_s(),
+                 frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
+                 rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
+}
+
+/// Renders and writes `frames` (sorted) in order: for each segment its static pass (when the
+/// method has one), then its frames. Adds each frame to `summary` when written. Throws
+/// RenderInterrupted at the first checkpoint after Ctrl-C.
 void render_frames(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
                    const std::string& key, RenderSummary& summary) {
     if (frames.empty()) return;
     // Build the acceleration structures once; each frame only moves the dynamic objects.
     RayTracer tracer(scene, scene.evaluate(frames.front()));
-    const auto bsdfs = make_bsdfs(scene);
-    std::optional<StaticSolution> solution;
-    const Segment* solution_segment = nullptr;
+    const Bsdfs bsdfs = make_bsdfs(scene);
     ConsoleProgress progress(int(frames.size()), settings.show_progress);
     const ScopedCheckpointListener listening(&progress);
     const std::optional<int> interrupt_after = test_interrupt_after_frames();
-    for (const int frame : frames) {
-        progress.begin_frame(frame);
-        // Each segment's static pass runs (or is loaded) before its first selected frame.
-        if (is_localized(settings) && solution_segment != &scene.segment_of(frame)) {
-            solution_segment = &scene.segment_of(frame);
-            solution = static_solution(settings, scene, tracer, *solution_segment);
+    for (const Segment& segment : scene.segments()) {
+        const std::vector<int> segment_frames = frames_in(frames, segment);
+        if (segment_frames.empty()) continue;
+        std::optional<StaticSolution> solution;
+        for (const int frame : segment_frames) {
+            progress.begin_frame(frame);
+            // The segment's static pass runs (or is loaded) with its first selected frame.
+            if (!solution && method_info(settings.method).has_static_pass)
+                solution = static_pass(settings, scene, tracer, segment);
+            if (interrupt_after == int(summary.frames_written.size())) std::raise(SIGINT);
+            render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame, key);
+            summary.frames_written.push_back(frame);
+            progress.finish_frame();
         }
-        if (interrupt_after == int(summary.frames_written.size())) std::raise(SIGINT);
-        const Clock::time_point frame_start = Clock::now();
-        const FrameState state = scene.evaluate(frame);
-        tracer.set_frame(state);
-        const LightSet lights(scene, state);
-        const FrameContext context{scene, state, tracer, lights, bsdfs};
-        const RenderedFrame rendered = render_frame(settings, context, solution ? &*solution : nullptr);
-        write_frame_outputs(settings, scene, frame, rendered, key);
-        summary.frames_written.push_back(frame);
-        progress.finish_frame();
-        spdlog::info("frame {:4d}  {:7.2f} s  {}{}", frame, seconds_since(frame_start),
-                     frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
-                     rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
     }
 }
 
 }  // namespace
 
 RenderSummary render_animation(const RenderSettings& settings) {
-    const Clock::time_point start = Clock::now();
-    if (settings.method != "path" && settings.method != "photon" && !is_localized(settings))
-        throw InputError("--method", "unknown method \"" + settings.method + "\" (localized, photon, frozen, path)");
+    const Stopwatch time;
+    validate(settings);
     const Scene scene = load_scene(settings);
     const std::vector<int> frames = select_frames(settings.frames, scene.frame_count());
     if (!settings.output.video_file.empty()) check_video_possible(frames);  // before hours of rendering
@@ -225,18 +165,19 @@ RenderSummary render_animation(const RenderSettings& settings) {
     summary.frames_left.assign(todo.begin() + long(summary.frames_written.size()), todo.end());
     // The video needs every selected frame: after an interrupt, the resumed run makes it.
     if (!settings.output.video_file.empty() && !summary.interrupted) write_video(settings, scene, frames);
-    summary.seconds = seconds_since(start);
+    summary.seconds = time.elapsed_s();
     return summary;
 }
 
 std::vector<std::string> bake_static_caches(const RenderSettings& settings) {
+    validate(settings);
     const Scene scene = load_scene(settings);
     std::filesystem::create_directories(settings.out_dir);
     RayTracer tracer(scene, scene.evaluate(0));
     std::vector<std::string> files;
     for (const Segment& segment : scene.segments()) {
-        static_solution(settings, scene, tracer, segment);
-        files.push_back(cache_file_of(settings, scene, segment));
+        static_pass(settings, scene, tracer, segment);
+        files.push_back(static_cache_file(settings.cache_file, settings.out_dir, scene, segment));
     }
     return files;
 }

@@ -26,7 +26,7 @@ protected:
         m_settings.out_dir = (fs::temp_directory_path() / fmt::format("steadylight_render_{}_{}",
                               ::testing::UnitTest::GetInstance()->current_test_info()->name(), getpid())).string();
         fs::remove_all(m_settings.out_dir);
-        m_settings.method = "path";
+        m_settings.method = Method::path;
         m_settings.path.samples_per_pixel = 1;
         m_settings.width = 16, m_settings.height = 12;
         m_settings.frames = parse_frame_selection("0-1");

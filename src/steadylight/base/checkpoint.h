@@ -1,8 +1,8 @@
 // Checkpoints of a long render: the places where it reports progress and where it may stop.
-// A signal handler (output/interrupt.h) only sets a flag; the render notices it at the next
+// A signal handler (run/interrupt.h) only sets a flag; the render notices it at the next
 // checkpoint — the start of a phase, or of a tile or chunk of a parallel loop (base/parallel.h) —
 // and unwinds with RenderInterrupted, so the frame in progress is dropped before anything of it
-// is written. Progress goes to one listener (the console, output/console.h), if any.
+// is written. Progress goes to one listener (the console, run/console.h), if any.
 #pragma once
 
 #include <exception>

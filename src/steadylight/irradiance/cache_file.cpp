@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "steadylight/base/hash.h"
-#include "steadylight/output/atomic_file.h"
+#include "steadylight/base/atomic_file.h"
 
 namespace steadylight {
 namespace {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "steadylight/base/settings_check.h"
 #include "steadylight/base/check.h"
 #include "steadylight/base/rng.h"
 
@@ -164,6 +165,11 @@ GatherResult final_gather(Vec3 p, Vec3 n, Vec3 ng, const std::vector<Vec3>& dire
     record.rotational_gradient = to_world(frame, rotational_gradient(hits, M, N));
     record.translational_gradient = to_world(frame, translational_gradient(hits, M, N));
     return result;
+}
+
+void validate(const GatherSettings& settings, const std::string& where) {
+    check_setting_range(where + "/theta_strata", settings.theta_strata, 1, 1 << 12);
+    check_setting_range(where + "/phi_strata", settings.phi_strata, 1, 1 << 12);
 }
 
 }  // namespace steadylight

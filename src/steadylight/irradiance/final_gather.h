@@ -10,7 +10,10 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "steadylight/base/ray.h"
 #include "steadylight/irradiance/irradiance_record.h"
@@ -24,6 +27,8 @@ struct GatherSettings {
     /// local directions everywhere, so unchanged surroundings give bit-identical results.
     bool fixed_directions = true;
 };
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(GatherSettings, theta_strata, phi_strata, fixed_directions)
+void validate(const GatherSettings& settings, const std::string& where);
 
 /// What a gather ray found: the radiance arriving along it and the distance to what it hit.
 struct GatherHit {

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "steadylight/base/settings_check.h"
 #include "steadylight/base/check.h"
 #include "steadylight/base/ray.h"  // infinity
 #include "steadylight/base/rng.h"
@@ -219,6 +220,14 @@ float clamp_radius(float harmonic_mean_distance, float pixel_footprint, const Ca
     const float min_radius = settings.min_spacing_px * pixel_footprint / settings.accuracy;
     const float max_radius = settings.max_spacing_px * pixel_footprint / settings.accuracy;
     return std::min(std::max(harmonic_mean_distance, min_radius), max_radius);
+}
+
+void validate(const CacheSettings& settings, const std::string& where) {
+    check_setting_range(where + "/accuracy", settings.accuracy, 0.01f, 2.0f);
+    check_setting_range(where + "/min_spacing_px", settings.min_spacing_px, 0.5f, 1000.0f);
+    check_setting_range(where + "/max_spacing_px", settings.max_spacing_px, 1.0f, 10000.0f);
+    check_setting(settings.min_spacing_px <= settings.max_spacing_px, where + "/max_spacing_px",
+                  "must not be smaller than min_spacing_px (--cache-max-spacing, --cache-spacing)");
 }
 
 }  // namespace steadylight

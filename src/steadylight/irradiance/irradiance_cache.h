@@ -8,7 +8,10 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "steadylight/irradiance/irradiance_record.h"
 
@@ -19,6 +22,8 @@ struct CacheSettings {
     float min_spacing_px = 2.0f;     // a record reaches (a * R) at least this many pixels...
     float max_spacing_px = 32.0f;    // ...and at most this many
 };
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CacheSettings, accuracy, min_spacing_px, max_spacing_px)
+void validate(const CacheSettings& settings, const std::string& where);
 
 class IrradianceCache {
 public:

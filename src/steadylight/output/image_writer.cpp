@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "steadylight/base/error.h"
-#include "steadylight/output/atomic_file.h"
+#include "steadylight/base/atomic_file.h"
 
 namespace steadylight {
 namespace {

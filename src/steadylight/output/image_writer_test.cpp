@@ -70,7 +70,7 @@ TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     const Image beauty = gradient(6, 4);
     Image influence(6, 4);
     for (size_t i = 0; i < influence.pixels.size(); ++i) influence.pixels[i] = Rgb{1, 1, 1} * float(i);
-    const std::vector<std::pair<std::string, Image>> aovs = {{"direct", gradient(6, 4)}, {"influence", influence}};
+    const std::vector<NamedImage> aovs = {{"direct", gradient(6, 4)}, {"influence", influence, true}};
     write_exr(path, frame_exr_layers(beauty, aovs));
 
     // OpenEXR lists channels sorted by name.

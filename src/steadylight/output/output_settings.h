@@ -18,7 +18,7 @@ struct OutputSettings {
 };
 
 /// What shapes the written images: the settings file's "render" part holds it
-/// (output/settings_file.h). The video is left out, since it does not change the frames.
+/// (run/settings_file.h). The video is left out, since it does not change the frames.
 inline void to_json(nlohmann::json& json, const OutputSettings& s) {
     json = {{"exr_type", s.exr_type == ExrPixelType::half ? "half" : "float"},
             {"exposure_ev", s.view.exposure_ev},

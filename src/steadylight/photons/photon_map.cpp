@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "steadylight/base/settings_check.h"
 #include "steadylight/base/parallel.h"
 
 namespace steadylight {
@@ -101,6 +102,11 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
         if (int(neighbours.size()) < k) break;  // nothing further within reach
     }
     return std::nullopt;
+}
+
+void validate(const DensitySettings& settings, const std::string& where) {
+    check_setting_range(where + "/k", settings.k, 1, 1'000'000);
+    check_setting_range(where + "/max_radius", settings.max_radius, 1e-6f, 1e30f);
 }
 
 }  // namespace steadylight

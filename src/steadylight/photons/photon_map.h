@@ -6,7 +6,10 @@
 #include <atomic>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "steadylight/photons/photon.h"
 #include "steadylight/photons/point_index.h"
@@ -17,6 +20,8 @@ struct DensitySettings {
     int k = 64;                 // photons per estimate
     float max_radius = 0.5f;    // scene units; estimates never look further
 };
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(DensitySettings, k, max_radius)
+void validate(const DensitySettings& settings, const std::string& where);
 
 class PhotonMap {
 public:

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "steadylight/base/settings_check.h"
 #include "steadylight/base/halton.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/rng.h"
@@ -161,6 +162,12 @@ TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& s
     const long caustic_count = has_non_diffuse_surface(context) ? settings.caustic_photons : 0;
     auto [caustic, unused] = trace_map(context, caustic_count, MapKind::caustic, settings, visibility, false);
     return {std::move(global), std::move(caustic), std::move(dynamic_map)};
+}
+
+void validate(const PhotonSettings& settings, const std::string& where) {
+    check_setting_range(where + "/global_photons", settings.global_photons, 0L, 1L << 34);
+    check_setting_range(where + "/caustic_photons", settings.caustic_photons, 0L, 1L << 34);
+    check_setting_range(where + "/max_bounces", settings.max_bounces, 0, 1000);
 }
 
 }  // namespace steadylight

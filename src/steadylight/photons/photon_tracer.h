@@ -10,8 +10,12 @@
 // without the dynamic objects, with the same random numbers, carrying negated power.
 #pragma once
 
-#include "steadylight/integrators/frame_context.h"
+#include <string>
+
+#include <nlohmann/json.hpp>
+
 #include "steadylight/photons/photon_map.h"
+#include "steadylight/shading/frame_context.h"
 
 namespace steadylight {
 
@@ -20,6 +24,9 @@ struct PhotonSettings {
     long caustic_photons = 200'000;  // photon paths emitted for the caustic map
     int max_bounces = 16;
 };
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PhotonSettings, global_photons, caustic_photons, max_bounces)
+/// Throws InputError naming `where` + "/<field>" for a value out of range.
+void validate(const PhotonSettings& settings, const std::string& where);
 
 struct TracedPhotons {
     PhotonMap global;   // every diffuse hit, direct ones included (for final gathering)

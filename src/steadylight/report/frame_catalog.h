@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "steadylight/integrators/frame_stats.h"
+#include "steadylight/passes/frame_stats.h"
 
 namespace steadylight {
 

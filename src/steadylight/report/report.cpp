@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "steadylight/base/error.h"
-#include "steadylight/output/atomic_file.h"
+#include "steadylight/base/atomic_file.h"
 #include "steadylight/report/frame_catalog.h"
 #include "steadylight/report/html.h"
 #include "steadylight/report/report_images.h"

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "steadylight/methods/method.h"
 #include "steadylight/report/html.h"
 
 namespace steadylight {
@@ -21,11 +22,11 @@ std::string format_ratio(double numerator, double denominator) {
     return fmt::format("{:.2f}x", numerator / denominator);
 }
 
-/// The series of one scene, the photon method's first when it is there.
+/// The series of one scene, the reference method's (photon) first when it is there.
 struct SceneSeries {
     std::string scene;
     std::vector<const StatsSeries*> series;
-    const StatsSeries* photon = nullptr;
+    const StatsSeries* reference = nullptr;
 };
 
 std::vector<SceneSeries> split_by_scene(const std::vector<StatsSeries>& all) {
@@ -33,7 +34,8 @@ std::vector<SceneSeries> split_by_scene(const std::vector<StatsSeries>& all) {
     for (const StatsSeries& series : all) {
         if (scenes.empty() || scenes.back().scene != series.scene) scenes.push_back({series.scene, {}, nullptr});
         scenes.back().series.push_back(&series);
-        if (series.method == "photon") scenes.back().photon = &series;
+        const MethodInfo* method = find_method(series.method);
+        if (method && method->is_reference) scenes.back().reference = &series;
     }
     return scenes;
 }
@@ -42,7 +44,8 @@ std::string header_row(const SceneSeries& scene) {
     std::string row = "<tr><th>per frame (means)</th>";
     for (const StatsSeries* series : scene.series) row += "<th>" + escape_html(series->method) + "</th>";
     for (const StatsSeries* series : scene.series)
-        if (scene.photon && series != scene.photon) row += "<th>photon / " + escape_html(series->method) + "</th>";
+        if (scene.reference && series != scene.reference)
+            row += "<th>" + escape_html(scene.reference->method) + " / " + escape_html(series->method) + "</th>";
     return row + "</tr>\n";
 }
 
@@ -50,8 +53,8 @@ std::string field_row(const SceneSeries& scene, const std::string& label, const 
     std::string row = "<tr><th>" + escape_html(label) + "</th>";
     for (const StatsSeries* series : scene.series) row += "<td>" + format_number(mean_of(*series, field)) + "</td>";
     for (const StatsSeries* series : scene.series)
-        if (scene.photon && series != scene.photon)
-            row += "<td>" + format_ratio(mean_of(*scene.photon, field), mean_of(*series, field)) + "</td>";
+        if (scene.reference && series != scene.reference)
+            row += "<td>" + format_ratio(mean_of(*scene.reference, field), mean_of(*series, field)) + "</td>";
     return row + "</tr>\n";
 }
 
@@ -59,7 +62,7 @@ std::string frames_row(const SceneSeries& scene) {
     std::string row = "<tr><th>frames</th>";
     for (const StatsSeries* series : scene.series) row += fmt::format("<td>{}</td>", series->frames.size());
     for (const StatsSeries* series : scene.series)
-        if (scene.photon && series != scene.photon) row += "<td></td>";
+        if (scene.reference && series != scene.reference) row += "<td></td>";
     return row + "</tr>\n";
 }
 

@@ -9,8 +9,8 @@
 
 #include "steadylight/base/error.h"
 #include "support/input_error.h"
-#include "steadylight/integrators/frame_stats.h"
-#include "steadylight/output/atomic_file.h"
+#include "steadylight/passes/frame_stats.h"
+#include "steadylight/base/atomic_file.h"
 #include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
@@ -183,7 +183,7 @@ TEST(Report, AFramesBeautyShowsOnceAndGreyLayersShowToo) {
     for (Rgb& p : beauty.pixels) p = {0.5f, 0.25f, 0.1f};
     for (Rgb& p : influence.pixels) p = {1, 1, 1};
     // As render writes it: the beauty unnamed and as `beauty`, `influence` as the one channel Y.
-    write_exr(frame_file_name(dir, "ball", 0, "exr"), frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence}}));
+    write_exr(frame_file_name(dir, "ball", 0, "exr"), frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence, true}}));
     const std::string html = report_of(dir);
     EXPECT_EQ(count(html, "data-layer=\"beauty\""), 1u);
     EXPECT_EQ(count(html, "<figure class=\"aov\" data-layer=\"influence\">"), 1u);

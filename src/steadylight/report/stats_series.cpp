@@ -3,15 +3,18 @@
 #include <algorithm>
 #include <map>
 
+#include "steadylight/methods/method.h"
+
 namespace steadylight {
 namespace {
 
-/// Where a method sorts among the series of a scene: the reference method first.
+/// Where a method sorts among the series of a scene: the reference method first, then the
+/// others in the method table's order, then names the table does not know.
 int method_rank(const std::string& method) {
-    if (method == "photon") return 0;
-    if (method == "localized") return 1;
-    if (method == "frozen") return 2;
-    return 3;
+    const MethodInfo* info = find_method(method);
+    if (!info) return int(methods().size()) + 1;
+    if (info->is_reference) return 0;
+    return 1 + int(info - methods().data());
 }
 
 }  // namespace

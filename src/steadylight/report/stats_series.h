@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "steadylight/integrators/frame_stats.h"
+#include "steadylight/passes/frame_stats.h"
 #include "steadylight/report/frame_catalog.h"
 
 namespace steadylight {

@@ -1,0 +1,38 @@
+// Writing files so that they appear whole or not at all: the content goes to `<path>.partial`
+// in the same folder and is renamed onto `path` only when complete.
+#pragma once
+
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace steadylight {
+
+/// Runs `write(temporary_path)` and renames the result onto `path`; on failure removes the
+/// temporary file and throws std::runtime_error naming `path`.
+void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+/// While it lives, collects the paths that write_file_atomically renames into place (from any
+/// thread): the files of one frame, for its manifest (run/frame_manifest.h). One at a time.
+class WrittenFiles {
+public:
+    WrittenFiles();
+    ~WrittenFiles();
+    WrittenFiles(const WrittenFiles&) = delete;
+    WrittenFiles& operator=(const WrittenFiles&) = delete;
+
+    std::vector<std::string> paths() const;
+    void add(const std::string& path);
+
+private:
+    mutable std::mutex m_mutex;
+    std::vector<std::string> m_paths;
+};
+
+/// Writes `text` to `path` atomically.
+void write_text_file(const std::string& path, const std::string& text);
+/// Writes `bytes` to `path` atomically.
+void write_binary_file(const std::string& path, const std::vector<unsigned char>& bytes);
+
+}  // namespace steadylight

@@ -1,0 +1,39 @@
+// The path tracer: unidirectional path tracing with next-event estimation, multiple importance
+// sampling (power heuristic) between BSDF and light sampling for area lights, and Russian
+// roulette (Veach 1997; pbrt-v4 PathIntegrator). It is the ground truth the photon-mapping
+// methods are checked against. Deterministic: each pixel's random stream is seeded from
+// (frame, pixel), so the image does not depend on the thread count.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "steadylight/base/image.h"
+#include "steadylight/base/rng.h"
+#include "steadylight/shading/frame_context.h"
+
+namespace steadylight {
+
+struct PathTracerSettings {
+    int samples_per_pixel = 64;
+    int max_depth = 64;           // bounces; Russian roulette usually ends paths much earlier
+    int roulette_start_depth = 3; // bounces before Russian roulette may end a path
+    uint64_t seed = 0;            // another seed gives independent noise (for reference images)
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PathTracerSettings, samples_per_pixel, max_depth,
+                                                roulette_start_depth, seed)
+/// Throws InputError naming `where` + "/<field>" for a value out of range.
+void validate(const PathTracerSettings& settings, const std::string& where);
+
+/// Called after each finished tile with (tiles done, tiles in all); may be called concurrently.
+using TileProgress = std::function<void(int, int)>;
+
+Image render_path_traced(const FrameContext& context, const PathTracerSettings& settings,
+                         const TileProgress& progress = {});
+
+/// Radiance arriving along `ray` (from its far end towards its origin).
+Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings);
+
+}  // namespace steadylight

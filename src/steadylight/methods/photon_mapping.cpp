@@ -1,0 +1,52 @@
+// The photon method: the passes of one frame from scratch (photon_mapping.h).
+#include "steadylight/methods/photon_mapping.h"
+
+#include "steadylight/passes/frame_photons.h"
+#include "steadylight/passes/photon_gather.h"
+#include "steadylight/passes/shading_pass.h"
+
+namespace steadylight {
+
+PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings) {
+    const Stopwatch total;
+    PhotonFrame out;
+    FrameStats& stats = out.stats;
+    stats.frame = context.frame.frame;
+
+    // Pass 1: photons.
+    const FramePhotons traced(context, settings, stats);
+    const IrradiancePhotons& irradiance_photons = traced.irradiance;
+
+    // Pass 2a: irradiance precomputed at a share of the global photons, then the irradiance
+    // cache over the image by final gathering.
+    IrradianceCache cache(settings.cache);
+    const float max_radius = settings.irradiance_estimate.max_radius;
+    const CacheBuildStats built = timed_phase("irradiance cache", stats.cache_s, [&] {
+        irradiance_photons.compute_all();  // the gathers over the whole image need nearly all
+        return build_photon_cache(cache, {context, irradiance_photons, max_radius, settings.gather, Visibility::everything, {}});
+    });
+    stats.irradiance_records = built.records_added;
+
+    // Pass 2b: shade every pixel.
+    const auto gather = make_point_gather(context, irradiance_photons, max_radius, settings.gather);
+    std::atomic<long> fallbacks = 0, gather_rays = 0;
+    const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers*) {
+        return remembered(pixel.memo, pixel.reach, sp, n, [&] {
+            return PixelMemo::Values{cached_irradiance(cache, sp, n, gather, fallbacks, gather_rays)};
+        })[0];
+    };
+    ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
+        return shade_frame(context, settings.shading, traced.maps.caustic, indirect);
+    });
+    stats.caustics_s = shaded.caustic_cpu_s;
+    stats.fallback_gathers = fallbacks;
+    stats.gather_rays = built.gather_rays + gather_rays;
+
+    take_common_layers(shaded, out);
+    out.records = record_picture(context.frame.camera, cache.records());
+    stats.irradiance_photons = irradiance_photons.computed();
+    stats.total_s = total.elapsed_s();
+    return out;
+}
+
+}  // namespace steadylight

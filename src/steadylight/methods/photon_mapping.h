@@ -1,0 +1,24 @@
+// Two-pass photon mapping with final gathering and an irradiance cache (Jensen 2001; the paper's
+// reference method, DESIGN.md §2.4), every frame from scratch, composed of the passes:
+//   frame photons (global and caustic maps) -> irradiance precomputed at photons (Christensen
+//   1999) -> irradiance cache over the image by final gathering -> the shading pass,
+//   L_r = L_d + L_i + L_c + L_s.
+#pragma once
+
+#include "steadylight/base/image.h"
+#include "steadylight/passes/frame_stats.h"
+#include "steadylight/passes/photon_mapping_settings.h"
+#include "steadylight/shading/frame_context.h"
+
+namespace steadylight {
+
+/// The frame and its parts (AOVs). beauty = direct + indirect + caustic + specular.
+struct PhotonFrame {
+    Image beauty, direct, indirect, caustic, specular;
+    Image records;  // 1 where an irradiance record projects, 0 elsewhere (paper Fig. 3)
+    FrameStats stats;
+};
+
+PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings);
+
+}  // namespace steadylight

@@ -1,0 +1,39 @@
+// The frame pass of the localized method (paper §3.1-§3.3; DESIGN.md §2), each frame, from the
+// segment's static solution (segment_cache.h):
+//   photons in the complete scene (global, caustic and dynamic maps; frame_photons.h) ->
+//   influence I of the dynamic objects per pixel (influence.h) -> L_y, a dynamic cache built
+//   only where I > tau_l and on dynamic objects -> L_t, the static records corrected by the
+//   dynamic map -> L_i = smoothstep blend of L_y and L_t -> L_d + L_i + L_c + L_s (shading_pass.h).
+// StaticCacheUse::frozen is the cheap production practice it is compared with: the static
+// cache as it is for static points, and L_y on dynamic objects only.
+#pragma once
+
+#include "steadylight/base/image.h"
+#include "steadylight/passes/frame_stats.h"
+#include "steadylight/passes/localized_settings.h"
+#include "steadylight/passes/photon_mapping_settings.h"
+#include "steadylight/passes/segment_cache.h"
+#include "steadylight/shading/frame_context.h"
+
+namespace steadylight {
+
+/// How a frame uses the static cache at points off the dynamic objects.
+enum class StaticCacheUse {
+    corrected,  // the localized method: L_t (corrected records) blended with L_y by the influence
+    frozen,     // the frozen baseline: the static records as they are
+};
+
+struct LocalizedFrame {
+    Image beauty, direct, indirect, caustic, specular;
+    Image indirect_static;  // L_i from the static cache alone (paper Fig. 1d)
+    Image L_y, L_t;         // the two estimates, as radiance (Fig. 1e, 1f)
+    Image influence;        // I relative to the static indirect irradiance (Fig. 4d, 5)
+    Image static_records, dynamic_records;  // record positions (Fig. 3)
+    FrameStats stats;
+};
+
+LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution& solution,
+                              const PhotonMappingSettings& photon, const LocalizedSettings& localized,
+                              StaticCacheUse use);
+
+}  // namespace steadylight

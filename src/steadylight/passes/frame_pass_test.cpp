@@ -1,0 +1,170 @@
+// The localized method's passes: the segment pass, its cache file, and the frame pass
+// (localized and frozen) against photon mapping, bit-identical static regions and threads.
+#include "steadylight/passes/frame_pass.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <filesystem>
+
+#include "steadylight/methods/photon_mapping.h"
+#include "support/scene_builder.h"
+
+namespace steadylight {
+namespace {
+
+using testing::add_material;
+using testing::add_object;
+using testing::make_empty_scene;
+
+const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
+
+PhotonMappingSettings small_settings() {
+    PhotonMappingSettings settings;
+    settings.photons = {.global_photons = 60'000, .caustic_photons = 0};
+    settings.shading.samples_per_pixel = 4;
+    return settings;
+}
+
+/// The segment pass of the whole animation, then `frames` rendered with it.
+std::vector<LocalizedFrame> render(const Scene& scene, const std::vector<int>& frames,
+                                   StaticCacheUse use = StaticCacheUse::corrected) {
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    const StaticSolution solution{run_segment_pass(scene, tracer, {0, scene.frame_count() - 1}, settings)};
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    std::vector<LocalizedFrame> out;
+    for (const int frame : frames) {
+        const PlacedFrame placed(scene, tracer, bsdfs, frame);
+        out.push_back(run_frame_pass(placed.context(), solution, settings, LocalizedSettings{}, use));
+    }
+    return out;
+}
+
+Scene load(const std::string& name, int width, int height) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/" + name + ".json"));
+    scene.set_resolution(width, height);
+    return scene;
+}
+
+/// A closed lit room with a sphere moving outside it, where no light reaches.
+Scene room_with_hidden_ball() {
+    SceneDesc desc = make_empty_scene({0, 2, -1.5f}, {0, 1.5f, 0}, 32, 24);
+    desc.frame_count = 3;
+    const int white = add_material(desc, {.reflectance = {0.7f, 0.7f, 0.7f}});
+    add_object(desc, make_box({0, 2, 0}, {4, 4, 4}), white);
+    add_object(desc, make_quad({-0.25f, 3.95f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}), white, {50, 50, 50});
+    add_object(desc, Sphere{{0, 0, 0}, 0.5f}, white);
+    desc.objects.back().placement[0].translation_track = Track<Vec3>{Interpolation::linear, {0, 1}, {{10, 1, 0}, {12, 1, 0}}};
+    return Scene(std::move(desc));
+}
+
+TEST(Localized, HiddenDynamicObjectGivesTheSameImageEveryFrame) {
+    const std::vector<LocalizedFrame> frames = render(room_with_hidden_ball(), {0, 1, 2});
+    for (const LocalizedFrame& frame : frames) {
+        EXPECT_EQ(frame.stats.dynamic_photons_stored, 0);
+        EXPECT_EQ(frame.stats.irradiance_records, 0);  // no L_y anywhere
+        EXPECT_TRUE(frame.beauty.pixels == frames[0].beauty.pixels) << "frame " << frame.stats.frame;
+    }
+}
+
+TEST(Localized, AgreesWithPhotonMappingOnBall) {
+    const Scene scene = load("ball", 80, 60);
+    const LocalizedFrame localized = render(scene, {15})[0];
+    const PhotonFrame photon = render_photon_mapped(PreparedFrame(scene, 15).context(), small_settings());
+    double sum2 = 0, sum = 0, sum_ref = 0;
+    for (size_t i = 0; i < photon.beauty.pixels.size(); ++i) {
+        const double y = std::min(1.0f, luminance(localized.beauty.pixels[i]));
+        const double y_ref = std::min(1.0f, luminance(photon.beauty.pixels[i]));
+        sum2 += (y - y_ref) * (y - y_ref), sum += y, sum_ref += y_ref;
+    }
+    const double n = double(photon.beauty.pixels.size()), mean_ref = sum_ref / n;
+    // Both share shading noise; they differ by the indirect light only. Measured: ~1% RMSE.
+    EXPECT_LT(std::sqrt(sum2 / n) / mean_ref, 0.03);
+    EXPECT_LT(std::abs(sum - sum_ref) / n / mean_ref, 0.01);
+    EXPECT_LT(localized.stats.irradiance_records * 3, photon.stats.irradiance_records);
+}
+
+/// Two lit rooms side by side, [0,3.4] and [4.6,8] in x, open towards the camera at z = 0, with
+/// a ball moving in the first only: no photon passes from one room to the other, and the wall
+/// between them is thicker than the density estimates' radius (0.5), so no estimate reaches across.
+Scene two_rooms_one_moving_ball() {
+    SceneDesc desc = make_empty_scene({4, 1.5f, -6}, {4, 1.5f, 0}, 48, 24, 40);
+    desc.frame_count = 2;
+    const int white = add_material(desc, {.reflectance = {0.7f, 0.7f, 0.7f}});
+    add_object(desc, make_quad({0, 0, 0}, {0, 0, 4}, {8, 0, 0}), white);  // floor
+    add_object(desc, make_quad({0, 3, 0}, {8, 0, 0}, {0, 0, 4}), white);  // ceiling
+    add_object(desc, make_quad({0, 0, 4}, {0, 3, 0}, {8, 0, 0}), white);  // back
+    add_object(desc, make_quad({0, 0, 0}, {0, 3, 0}, {0, 0, 4}), white);  // left
+    add_object(desc, make_quad({8, 0, 0}, {0, 0, 4}, {0, 3, 0}), white);  // right
+    add_object(desc, make_box({4, 1.5f, 2}, {1.2f, 3, 4}), white);        // partition
+    for (const float x : {1.75f, 5.75f})
+        add_object(desc, make_quad({x, 2.95f, 1.75f}, {0.5f, 0, 0}, {0, 0, 0.5f}), white, {30, 30, 30});
+    add_object(desc, Sphere{{0, 0, 0}, 0.4f}, white);
+    desc.objects.back().placement[0].translation_track = Track<Vec3>{Interpolation::linear, {0, 1}, {{1.5f, 0.4f, 2}, {2.5f, 0.4f, 2}}};
+    return Scene(std::move(desc));
+}
+
+TEST(Localized, StaticRegionsAreBitIdenticalBetweenFrames) {
+    const std::vector<LocalizedFrame> frames = render(two_rooms_one_moving_ball(), {0, 1});
+    const Image& a = frames[0].beauty;
+    const Image& b = frames[1].beauty;
+    // The room without the ball (the left half of the image: the camera's right is -x) is
+    // untouched by it, to the last bit; the room with it changes.
+    int changed_in_left_room = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (x < a.width / 2 - 1) {
+                EXPECT_EQ(a.at(x, y), b.at(x, y)) << "pixel " << x << "," << y;
+            }
+            if (x > a.width / 2 + 1) changed_in_left_room += !(a.at(x, y) == b.at(x, y));
+        }
+    EXPECT_GT(changed_in_left_room, 20);
+}
+
+TEST(Localized, SameFramesOnOneOrTwoThreads) {
+    const Scene scene = load("ball", 48, 36);
+    std::vector<LocalizedFrame> one, two;
+    tbb::task_arena(1).execute([&] { one = render(scene, {20}); });
+    tbb::task_arena(2).execute([&] { two = render(scene, {20}); });
+    EXPECT_TRUE(one[0].beauty.pixels == two[0].beauty.pixels);
+    EXPECT_TRUE(one[0].influence.pixels == two[0].influence.pixels);
+    EXPECT_EQ(one[0].stats.irradiance_records, two[0].stats.irradiance_records);
+}
+
+TEST(Localized, FrozenCacheRecomputesOnlyOnDynamicObjects) {
+    const Scene scene = load("ball", 64, 48);
+    const LocalizedFrame frozen = render(scene, {30}, StaticCacheUse::frozen)[0];
+    const LocalizedFrame localized = render(scene, {30}, StaticCacheUse::corrected)[0];
+    EXPECT_GT(frozen.stats.irradiance_records, 0);
+    EXPECT_LE(frozen.stats.irradiance_records, localized.stats.irradiance_records);
+}
+
+TEST(Localized, StaticCacheIsSavedThenLoadedAndGoesStaleWhenTheSceneChanges) {
+    const std::string file = (std::filesystem::temp_directory_path() / "steadylight_localized_test.irrcache").string();
+    std::filesystem::remove(file);
+    const Scene scene = load("ball", 32, 24);
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    const StaticSolution computed = load_or_run_segment_pass(scene, tracer, {0, 59}, settings, file);
+    EXPECT_FALSE(computed.loaded);
+    const StaticSolution loaded = load_or_run_segment_pass(scene, tracer, {0, 59}, settings, file);
+    ASSERT_TRUE(loaded.loaded);
+    ASSERT_EQ(loaded.cache.records().size(), computed.cache.records().size());
+    for (size_t i = 0; i < loaded.cache.records().size(); ++i)
+        EXPECT_EQ(loaded.cache.records()[i].E, computed.cache.records()[i].E);
+
+    SceneDesc changed = load_scene_desc(source_dir + "/scenes/ball.json");
+    for (MaterialDesc& material : changed.materials)
+        if (material.name == "white") material.reflectance = {0.5f, 0.5f, 0.5f};
+    Scene other(std::move(changed));
+    other.set_resolution(32, 24);
+    RayTracer other_tracer(other, other.evaluate(0));
+    const StaticSolution stale = load_or_run_segment_pass(other, other_tracer, {0, 59}, settings, file);
+    EXPECT_FALSE(stale.loaded);
+    EXPECT_NE(stale.file_note.find("stale"), std::string::npos) << stale.file_note;
+    std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace steadylight

@@ -1,0 +1,24 @@
+// The first pass of every photon-mapping frame (Jensen 2001, ch. 5; paper §3.1): the frame's
+// photons traced in the complete scene — the global, caustic and dynamic maps — and the
+// irradiance precomputed (lazily) at a share of its global photons (Christensen 1999).
+#pragma once
+
+#include "steadylight/passes/frame_stats.h"
+#include "steadylight/passes/photon_mapping_settings.h"
+#include "steadylight/photons/photon_tracer.h"
+
+namespace steadylight {
+
+/// A frame's photon maps and the irradiance at its photons. Construction traces the photons as
+/// the phase "photons" and records the counts and the time in `stats`. Never copied or moved:
+/// `irradiance` refers to `maps.global`.
+struct FramePhotons {
+    FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats);
+    FramePhotons(const FramePhotons&) = delete;
+    FramePhotons& operator=(const FramePhotons&) = delete;
+
+    TracedPhotons maps;
+    IrradiancePhotons irradiance;
+};
+
+}  // namespace steadylight

@@ -1,0 +1,61 @@
+// Statistics of one rendered frame: counts and wall time per phase, printed after each frame
+// and written beside it as JSON (`<scene>_<frame:04>.stats.json`), which `steadylight report`
+// reads back. The passes fill them; timed_phase() is how a pass times one of its phases.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "steadylight/base/checkpoint.h"
+#include "steadylight/base/stopwatch.h"
+
+namespace steadylight {
+
+struct FrameStats {
+    std::string method;
+    int frame = 0;
+    long global_photons_emitted = 0;
+    long global_photons_stored = 0;
+    long caustic_photons_emitted = 0;
+    long caustic_photons_stored = 0;
+    long dynamic_photons_stored = 0;  // localized: positive and negative photons of the dynamic map
+    long irradiance_photons = 0;      // photons whose irradiance was computed (lazily, for gathers)
+    long irradiance_records = 0;      // computed for this frame (localized: the dynamic cache, L_y)
+    long static_records = 0;          // localized: records of the segment's static cache
+    long fallback_gathers = 0;        // gathers at points the cache did not cover
+    long gather_rays = 0;
+    double photon_tracing_s = 0;      // tracing the photon maps
+    double cache_s = 0;               // building this frame's irradiance cache (localized: L_y), including
+                                      // the irradiance at photons its gathers read (photon: all, up front)
+    double influence_s = 0;           // localized: the influence I of the dynamic objects
+    double correction_s = 0;          // localized: correcting the static records by the dynamic map (L_t)
+    double direct_s = 0;              // shading pass: direct light, cache look-ups, specular
+    double caustics_s = 0;            // caustic estimates (inside the shading pass, summed over threads)
+    double total_s = 0;
+};
+
+void to_json(nlohmann::json& json, const FrameStats& stats);
+/// Reads what to_json wrote (`steadylight report`); throws nlohmann::json::exception when a field
+/// is missing or has the wrong type.
+void from_json(const nlohmann::json& json, FrameStats& stats);
+
+/// One line for the console: the phases and counts of the frame.
+std::string summarize(const FrameStats& stats);
+
+/// Runs `work()` as the frame's phase `name`: a checkpoint (progress, Ctrl-C; base/checkpoint.h),
+/// then the work, whose wall time is stored in `seconds` (a FrameStats field). Returns what
+/// `work()` returns.
+template <class Work>
+decltype(auto) timed_phase(std::string_view name, double& seconds, Work&& work) {
+    begin_phase(name);
+    const Stopwatch time;
+    struct Record {  // stores the time also when `work()` returns a value or throws
+        const Stopwatch& time;
+        double& seconds;
+        ~Record() { seconds = time.elapsed_s(); }
+    } record{time, seconds};
+    return work();
+}
+
+}  // namespace steadylight

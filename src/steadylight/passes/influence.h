@@ -1,0 +1,36 @@
+// The influence of the dynamic objects on each pixel (paper §3.3; DESIGN.md §2.2): a density
+// estimate of the absolute power of the N nearest dynamic photons at the point a pixel's centre
+// sees, relative to the static indirect irradiance there, and the smoothstep blend weight of
+// L_y against L_t that it gives.
+#pragma once
+
+#include <vector>
+
+#include "steadylight/irradiance/irradiance_cache.h"
+#include "steadylight/passes/localized_settings.h"
+#include "steadylight/photons/photon_map.h"
+#include "steadylight/shading/frame_context.h"
+
+namespace steadylight {
+
+/// The influence I relative to the static indirect irradiance, at every `step`-th pixel centre;
+/// the pixels between take their block's value. Empty (no values) where nothing was estimated.
+struct InfluenceMap {
+    int width = 0, height = 0, step = 1;
+    std::vector<float> values;  // (width / step rounded up) x (height / step rounded up)
+
+    float at(int x, int y) const {
+        const int columns = (width + step - 1) / step;
+        return values[size_t((y / step) * columns + x / step)];
+    }
+};
+
+/// I at the pixels of the frame, from the frame's dynamic photons; `search_radius` bounds the
+/// photon search (the global irradiance estimate's radius).
+InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic, const IrradianceCache& static_cache,
+                                const LocalizedSettings& settings, float search_radius);
+
+/// f(g(I)) of paper §3.3: 0 below tau_lower, 1 above tau_upper, a smoothstep between.
+float blend_weight(float influence, const LocalizedSettings& settings);
+
+}  // namespace steadylight

@@ -1,0 +1,18 @@
+// Validation of the localized method's settings (localized_settings.h).
+#include "steadylight/passes/localized_settings.h"
+
+#include "steadylight/base/settings_check.h"
+
+namespace steadylight {
+
+void validate(const LocalizedSettings& settings, const std::string& where) {
+    check_setting_range(where + "/influence_photons", settings.influence_photons, 1, 100000);
+    validate(settings.correction_estimate, where + "/correction_estimate");
+    check_setting_range(where + "/influence_step", settings.influence_step, 1, 1024);
+    check_setting_range(where + "/tau_lower", settings.tau_lower, 0.0f, 1e6f);
+    check_setting_range(where + "/tau_upper", settings.tau_upper, 0.0f, 1e6f);
+    check_setting(settings.tau_lower < settings.tau_upper, where + "/tau_upper",
+                  "must be larger than tau_lower (--tau-upper, --tau-lower)");
+}
+
+}  // namespace steadylight

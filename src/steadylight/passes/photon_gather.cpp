@@ -1,0 +1,117 @@
+#include "steadylight/passes/photon_gather.h"
+
+#include "steadylight/base/rng.h"
+#include "steadylight/shading/surface_point.h"
+
+namespace steadylight {
+
+SurfacePoint face_towards(SurfacePoint sp, Vec3 d) {
+    if (dot(sp.ng, d) > 0) {
+        sp.ng = -sp.ng;
+        sp.ns = -sp.ns;
+    }
+    return sp;
+}
+
+GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
+                              Visibility visibility, Ray ray) {
+    GatherHit result;
+    Rgb beta{1, 1, 1};
+    for (int depth = 0; depth < 4; ++depth) {
+        const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
+        if (!hit) return result;
+        if (depth == 0) result.distance = hit->t;
+        const SurfacePoint sp = face_towards(make_surface_point(context.scene, context.frame, ray, *hit), ray.d);
+        const Bsdf& bsdf = context.bsdf_of(sp.object);
+        if (bsdf.is_diffuse()) {
+            const std::optional<Rgb> E = photons.lookup(sp.p, sp.ng, max_radius);
+            if (E) result.L = beta * bsdf.diffuse_reflectance() * *E * inv_pi;
+            return result;
+        }
+        // Follow specular and glossy surfaces along one deterministic sample.
+        const Frame frame = Frame::from_normal(sp.ns);
+        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(sp.object)));
+        const float u_lobe = rng.next_float();
+        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-ray.d), rng.next_vec2(), u_lobe, TransportMode::radiance);
+        if (!bs) return result;
+        beta *= bs->weight;
+        ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+    }
+    return result;
+}
+
+std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y) {
+    const Camera& camera = context.frame.camera;
+    Ray ray = camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f);
+    float distance = 0;  // along the path: the pixel's footprint grows with it, mirrors or not
+    for (int depth = 0; depth <= max_specular_chain; ++depth) {
+        const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
+        if (!hit) return std::nullopt;
+        distance += hit->t;
+        const SurfacePoint sp = face_towards(make_surface_point(context.scene, context.frame, ray, *hit), ray.d);
+        const Bsdf& bsdf = context.bsdf_of(sp.object);
+        if (bsdf.is_diffuse()) return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(distance), sp.object};
+        if (!bsdf.is_delta()) return std::nullopt;
+        // Through glass along the refracted ray (the likelier branch, unless totally reflected),
+        // off mirrors along the reflected one.
+        const Frame frame = Frame::from_normal(sp.ns);
+        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-ray.d), {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
+        if (!bs) return std::nullopt;
+        ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+    }
+    return std::nullopt;
+}
+
+CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build) {
+    const Camera& camera = build.context.frame.camera;
+    const std::vector<Vec3> fixed_dirs = gather_directions(build.gather, 0);
+    return build_cache_over_image(
+        cache, camera.width, camera.height,
+        [&](int x, int y) -> std::optional<CachePoint> {
+            const std::optional<CachePoint> point = cache_point_at(build.context, build.visibility, x, y);
+            if (point && build.wanted && !build.wanted(*point, x, y)) return std::nullopt;
+            return point;
+        },
+        [&](const CachePoint& point, uint64_t id) {
+            const std::vector<Vec3> dirs = build.gather.fixed_directions ? fixed_dirs : gather_directions(build.gather, id);
+            return final_gather(point.p, point.n, point.ng, dirs, build.gather, [&](const Ray& r) {
+                return gather_from_photons(build.context, build.photons, build.max_radius, build.visibility, r);
+            });
+        });
+}
+
+std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
+                                                                        const IrradiancePhotons& photons, float max_radius,
+                                                                        const GatherSettings& gather) {
+    return [&context, &photons, max_radius, &gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
+        return final_gather(sp.p, n, sp.ng, dirs, gather, [&](const Ray& r) {
+            return gather_from_photons(context, photons, max_radius, Visibility::everything, r);
+        });
+    };
+}
+
+Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records) {
+    Image picture(camera.width, camera.height);
+    for (const IrradianceRecord& record : records) {
+        const std::optional<Vec2> film = camera.project(record.p);
+        if (!film || film->x < 0 || film->y < 0 || film->x >= float(camera.width) || film->y >= float(camera.height)) continue;
+        picture.at(int(film->x), int(film->y)) = {1, 1, 1};
+    }
+    return picture;
+}
+
+Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
+                      const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather, std::atomic<long>& fallbacks,
+                      std::atomic<long>& gather_rays) {
+    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n)) return *E;
+    // Between records after neighbour clamping, or inside a pixel off its centre: let the
+    // records reach twice as far before gathering anew.
+    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n, 2)) return *E;
+    // Not covered (a point seen only through a mirror): gather here without keeping the record.
+    const GatherResult g = gather(sp, n);
+    ++fallbacks;
+    gather_rays += g.rays;
+    return g.record.E;
+}
+
+}  // namespace steadylight

@@ -1,0 +1,62 @@
+// Final gathering against a photon map, shared by the photon-mapping method and the localized
+// method's passes: what a gather ray brings back, which point of each pixel gets cached
+// irradiance, building a cache over the camera's image, and the look-up that gathers where no
+// record reaches (DESIGN.md §1, §2.4).
+#pragma once
+
+#include <atomic>
+#include <functional>
+
+#include "steadylight/base/image.h"
+#include "steadylight/shading/frame_context.h"
+#include "steadylight/irradiance/cache_builder.h"
+#include "steadylight/photons/photon_map.h"
+#include "steadylight/shading/surface_point.h"
+
+namespace steadylight {
+
+/// The surface point with its normals turned to face the incoming direction `d`.
+SurfacePoint face_towards(SurfacePoint sp, Vec3 d);
+
+/// Radiance a final-gather ray brings back: at a diffuse surface rho / pi times the precomputed
+/// irradiance there (its whole outgoing radiance, direct included); through mirrors and glass it
+/// continues; emitters add nothing (that light is L_d). Sees what `visibility` allows.
+GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
+                              Visibility visibility, Ray ray);
+
+/// Mirrors and glass followed from the camera to find a pixel's diffuse point.
+constexpr int max_specular_chain = 8;
+
+/// The diffuse surface point a pixel's centre sees (seeing what `visibility` allows), where its
+/// indirect irradiance is cached: directly, or through mirrors and glass (so that what the camera
+/// sees through them is cached too, instead of gathered anew by each camera ray that lands
+/// there); std::nullopt for background and glossy surfaces.
+std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y);
+
+/// Adds records to `cache` over the camera's image by final gathering against `photons`, at the
+/// pixels `wanted` accepts (all when empty).
+struct PhotonCacheBuild {
+    const FrameContext& context;
+    const IrradiancePhotons& photons;
+    float max_radius;           // of the precomputed-irradiance look-up
+    const GatherSettings& gather;
+    Visibility visibility;
+    std::function<bool(const CachePoint&, int x, int y)> wanted;
+};
+CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build);
+
+/// A final gather at any surface point (seeing everything), for points no record covers.
+std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
+                                                                        const IrradiancePhotons& photons, float max_radius,
+                                                                        const GatherSettings& gather);
+
+/// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
+/// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.
+Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
+                      const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather, std::atomic<long>& fallbacks,
+                      std::atomic<long>& gather_rays);
+
+/// 1 at the pixels where records project, 0 elsewhere (paper Fig. 3).
+Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records);
+
+}  // namespace steadylight

@@ -1,0 +1,33 @@
+// The segment pass's result kept on disk: a segment's static irradiance cache is loaded from its
+// file when the file was made from the same inputs (static_inputs_hash), and otherwise computed
+// by the segment pass and saved there, for later runs, `steadylight bake`, and other machines
+// (irradiance/cache_file.h holds the format).
+#pragma once
+
+#include <string>
+
+#include "steadylight/passes/segment_pass.h"
+
+namespace steadylight {
+
+/// What the segment pass leaves for every frame of its segment: the static irradiance cache.
+struct StaticSolution {
+    IrradianceCache cache;
+    double seconds = 0;     // to compute or to load it
+    bool loaded = false;    // read from the cache file instead of computed
+    std::string file_note;  // why the file was not used, when it was not
+
+    long records() const { return long(cache.records().size()); }
+};
+
+/// The cache file of `segment`: `cache_file`, or `<out_dir>/<scene>.irrcache` when it is empty;
+/// with several segments each gets its frames added: `<scene>_0000-0029.irrcache`.
+std::string static_cache_file(const std::string& cache_file, const std::string& out_dir, const Scene& scene,
+                              const Segment& segment);
+
+/// The static solution of `segment`: from `file` when that matches its inputs, else computed
+/// (run_segment_pass) and saved to `file`. Logs which, with the record count.
+StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                        const PhotonMappingSettings& settings, const std::string& file);
+
+}  // namespace steadylight

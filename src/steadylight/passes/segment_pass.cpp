@@ -1,0 +1,101 @@
+// The segment pass: static photons and the static cache (segment_pass.h).
+#include "steadylight/passes/segment_pass.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "steadylight/base/checkpoint.h"
+#include "steadylight/base/hash.h"
+#include "steadylight/passes/photon_gather.h"
+
+namespace steadylight {
+namespace {
+
+bool same_camera(const Camera& a, const Camera& b) {
+    return a.world_from_camera == b.world_from_camera && a.tan_half_fov_y == b.tan_half_fov_y;
+}
+
+void add_geometry(Hasher& h, const Geometry& geometry) {
+    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) {
+        for (const Vec3& p : mesh->positions) h.add(p);
+        for (const Vec3& n : mesh->normals) h.add(n);
+        for (const int index : mesh->indices) h.add(index);
+    } else {
+        h.add(std::get<Sphere>(geometry).center);
+        h.add(std::get<Sphere>(geometry).radius);
+    }
+}
+
+/// The first frame of each distinct camera view of the segment, in frame order.
+std::vector<int> distinct_views(const Scene& scene, const Segment& segment) {
+    std::vector<int> frames;
+    std::vector<Camera> views;
+    for (int frame = segment.first; frame <= segment.last; ++frame) {
+        const Camera camera = scene.evaluate(frame).camera;
+        if (std::any_of(views.begin(), views.end(), [&](const Camera& c) { return same_camera(c, camera); })) continue;
+        views.push_back(camera);
+        frames.push_back(frame);
+    }
+    return frames;
+}
+
+}  // namespace
+
+uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const PhotonMappingSettings& settings) {
+    Hasher h;
+    h.add("steadylight static cache 2");  // change when the algorithm changes what it computes
+    const FrameState state = scene.evaluate(segment.first);
+    for (const int i : scene.static_objects()) {
+        const ObjectDesc& object = scene.object(i);
+        h.add(state.world_from_object[size_t(i)]);
+        add_geometry(h, object.geometry);
+        const MaterialDesc& m = scene.desc().materials[size_t(object.material)];
+        h.add(int(m.type)), h.add(m.reflectance), h.add(m.transmittance), h.add(m.ior), h.add(m.roughness);
+        h.add(object.emission), h.add(object.two_sided_emission);
+    }
+    // A moving emitter lights the static scene from where it is at the segment's start.
+    for (const int i : scene.dynamic_objects())
+        if (scene.object(i).is_emitter()) {
+            h.add(state.world_from_object[size_t(i)]), h.add(scene.object(i).emission);
+            add_geometry(h, scene.object(i).geometry);
+        }
+    for (const PointLightDesc& light : scene.desc().point_lights) {
+        h.add(int(light.type)), h.add(light.position), h.add(light.direction), h.add(light.intensity);
+        h.add(light.cone_angle_deg), h.add(light.falloff_start_deg);
+    }
+    for (int frame = segment.first; frame <= segment.last; ++frame) {
+        const Camera camera = scene.evaluate(frame).camera;
+        h.add(camera.world_from_camera), h.add(camera.tan_half_fov_y), h.add(camera.width), h.add(camera.height);
+    }
+    h.add(settings.photons.global_photons), h.add(settings.photons.max_bounces);
+    h.add(settings.irradiance_estimate.k), h.add(settings.irradiance_estimate.max_radius), h.add(settings.irradiance_stride);
+    h.add(settings.gather.theta_strata), h.add(settings.gather.phi_strata), h.add(settings.gather.fixed_directions);
+    h.add(settings.cache.accuracy), h.add(settings.cache.min_spacing_px), h.add(settings.cache.max_spacing_px);
+    return h.value();
+}
+
+IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                 const PhotonMappingSettings& settings) {
+    const Bsdfs bsdfs = make_bsdfs(scene);
+
+    // Static photons: the complete scene's photon paths with the dynamic objects removed.
+    begin_phase("static photons");
+    const PhotonMap static_photons = [&] {
+        const PlacedFrame start(scene, tracer, bsdfs, segment.first);
+        return trace_photons(start.context(), settings.photons, Visibility::static_only).global;
+    }();
+    const IrradiancePhotons irradiance(static_photons, settings.irradiance_stride, settings.irradiance_estimate);
+    irradiance.compute_all();  // the static cache covers every view
+
+    // The static cache over every distinct camera view of the segment.
+    begin_phase("static cache");
+    IrradianceCache cache(settings.cache);
+    for (const int frame : distinct_views(scene, segment)) {
+        const PlacedFrame view(scene, tracer, bsdfs, frame);
+        build_photon_cache(cache, {view.context(), irradiance, settings.irradiance_estimate.max_radius, settings.gather,
+                                   Visibility::static_only, {}});
+    }
+    return cache;
+}
+
+}  // namespace steadylight

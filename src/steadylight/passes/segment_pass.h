@@ -1,0 +1,26 @@
+// The segment pass of the localized method (paper §3, §3.2; DESIGN.md §2), once per segment:
+// the static photons — the photon paths of the scene with its dynamic objects removed — and,
+// by final gathering against them, the static irradiance cache over every distinct camera view
+// of the segment (the camera path is known in advance). Every frame of the segment starts from
+// it (frame_pass.h). Saving and loading it is segment_cache.h's business.
+#pragma once
+
+#include <cstdint>
+
+#include "steadylight/irradiance/irradiance_cache.h"
+#include "steadylight/passes/photon_mapping_settings.h"
+#include "steadylight/scene/scene.h"
+#include "steadylight/trace/ray_tracer.h"
+
+namespace steadylight {
+
+/// A hash of everything the static cache of `segment` depends on: the static objects and their
+/// materials, the lights, every camera view, and the settings that shape the cache.
+uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const PhotonMappingSettings& settings);
+
+/// The static irradiance cache of `segment`: static photons, then records over every distinct
+/// camera view. Moves `tracer` through the segment's frames.
+IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                 const PhotonMappingSettings& settings);
+
+}  // namespace steadylight

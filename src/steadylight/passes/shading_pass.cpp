@@ -1,0 +1,181 @@
+#include "steadylight/passes/shading_pass.h"
+
+#include "steadylight/base/parallel.h"
+#include "steadylight/base/rng.h"
+#include "steadylight/base/sampling.h"
+#include "steadylight/base/settings_check.h"
+#include "steadylight/base/stopwatch.h"
+#include "steadylight/passes/photon_gather.h"
+#include "steadylight/shading/surface_point.h"
+
+namespace steadylight {
+namespace {
+
+constexpr int tile_size = 16;
+
+/// The lighting at a pixel split the way the EXR's layers are.
+struct Components {
+    Rgb direct, indirect, caustic, specular;
+    ExtraLayers extra{};
+    Rgb sum() const { return direct + indirect + caustic + specular; }
+};
+
+/// Which of a pixel's light samples a camera ray takes: sample k of this ray is number
+/// first + k of `count`, stratified over the pixel (base/sampling.h stratified_2d), so the
+/// shadow rays of all the pixel's camera rays together cover the lights evenly.
+struct LightStrata {
+    uint32_t first = 0;
+    uint32_t count = 0;  // 0: no stratification, independent samples
+    Vec2 shift;
+};
+
+class Shader {
+public:
+    Shader(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
+           const IndirectIrradiance& indirect)
+        : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect) {}
+
+    Components shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel, const LightStrata& strata,
+                     Pcg32& rng) const;
+    double caustic_cpu_s() const { return double(m_caustic_ns) * 1e-9; }
+
+private:
+    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
+                     Pcg32& rng) const;
+    void shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
+                       const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const;
+
+    const FrameContext& m_context;
+    const ShadingSettings& m_settings;
+    const PhotonMap& m_caustic;
+    const IndirectIrradiance& m_indirect;
+    mutable std::atomic<long> m_caustic_ns = 0;
+};
+
+Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+                         const LightStrata& strata, Pcg32& rng) const {
+    Rgb sum;
+    for (int s = 0; s < m_settings.direct_samples; ++s) {
+        const float u_select = rng.next_float();
+        const Vec2 u = strata.count ? stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift) : rng.next_vec2();
+        const std::optional<LightSample> light = m_context.lights.sample(sp.p, u_select, u);
+        if (!light) continue;
+        const Vec3 wi = frame.to_local(light->wi);
+        const Rgb f = bsdf.eval(wo, wi);
+        if (is_black(f) || m_context.tracer.occluded(spawn_ray_to(sp.p, sp.ng, light->p))) continue;
+        sum += f * light->Li * (std::abs(wi.z) / light->pdf);
+    }
+    return sum / float(m_settings.direct_samples);
+}
+
+void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
+                           const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const {
+    const Rgb albedo_over_pi = bsdf.diffuse_reflectance() * inv_pi;
+    c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
+    c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
+    if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
+    const Stopwatch caustic_time;
+    c.caustic = albedo_over_pi * remembered(pixel.caustic_memo, pixel.reach, sp, sp.ng, [&] {
+        return PixelMemo::Values{m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate)};
+    })[0];
+    m_caustic_ns += long(caustic_time.elapsed_s() * 1e9);
+}
+
+Components Shader::shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel,
+                         const LightStrata& strata, Pcg32& rng) const {
+    Components c;
+    const std::optional<Hit> hit = m_context.tracer.intersect(ray);
+    if (!hit) return c;
+    const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
+    const ObjectDesc& object = m_context.scene.object(surface.object);
+    // An emitter seen by the camera is direct light; seen through a mirror the caller files it
+    // under specular.
+    if (count_emission && object.is_emitter()) c.direct += emitted_radiance(object, surface.ng, -ray.d);
+    const SurfacePoint sp = face_towards(surface, ray.d);
+    const Bsdf& bsdf = m_context.bsdf_of(sp.object);
+    const Frame frame = Frame::from_normal(sp.ns);
+    const Vec3 wo = frame.to_local(-ray.d);
+    if (bsdf.is_diffuse()) {
+        PixelSample at = pixel;
+        // Within a pixel the camera's rays spread over about one footprint; at grazing angles
+        // over more, hence the factor 2.
+        at.reach = 2 * m_context.frame.camera.pixel_footprint(hit->t);
+        if (depth > 0) at.memo = at.caustic_memo = nullptr;
+        shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, rng, c);
+        return c;
+    }
+    // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
+    // indirect light (emission is not counted twice). Mirrors and glass see emitters directly.
+    if (!bsdf.is_delta()) c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
+    if (depth >= m_settings.max_specular_depth) return c;
+    const float u_lobe = rng.next_float();
+    const std::optional<BsdfSample> bs = bsdf.sample(wo, rng.next_vec2(), u_lobe, TransportMode::radiance);
+    if (!bs) return c;
+    const Ray next = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+    c.specular = bs->weight * shade(next, depth + 1, bs->is_delta, pixel, LightStrata{}, rng).sum();
+    return c;
+}
+
+}  // namespace
+
+const PixelMemo::Values* PixelMemo::find(const SurfacePoint& sp, Vec3 n, float reach) const {
+    constexpr float min_cos_normals = 0.99f;  // about 8 degrees
+    for (int i = 0; i < m_count; ++i) {
+        const Entry& e = m_entries[size_t(i)];
+        if (e.object == sp.object && dot(e.n, n) > min_cos_normals && length2(e.p - sp.p) <= reach * reach) return &e.values;
+    }
+    return nullptr;
+}
+
+void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
+    if (m_count < capacity) m_entries[size_t(m_count++)] = {sp.object, sp.p, n, values};
+}
+
+ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
+                        const IndirectIrradiance& indirect) {
+    const Camera& camera = context.frame.camera;
+    ShadedFrame out;
+    for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular}) *image = Image(camera.width, camera.height);
+    for (Image& image : out.extra) image = Image(camera.width, camera.height);
+    const Shader shader(context, settings, caustic, indirect);
+    const int n = settings.samples_per_pixel;
+    const float inv_n = 1.0f / float(n);
+    parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                // The same numbers for a pixel in every frame: where nothing changes, nothing
+                // flickers (paper §4; bit-identical static regions).
+                Pcg32 rng(hash_ids(uint64_t(y) * uint64_t(camera.width) + uint64_t(x), 0x9e01));
+                const Vec2 shift = rng.next_vec2();
+                const LightStrata strata{0, uint32_t(n * settings.direct_samples), rng.next_vec2()};
+                Components sum;
+                PixelMemo memo, caustic_memo;
+                for (int s = 0; s < n; ++s) {
+                    const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
+                    const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
+                    const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
+                    const Components c = shader.shade(ray, 0, true, {x, y, s, n, &memo, &caustic_memo}, ray_strata, rng);
+                    if (!is_finite(c.sum())) continue;
+                    sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
+                    for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];
+                }
+                out.direct.at(x, y) = sum.direct * inv_n;
+                out.indirect.at(x, y) = sum.indirect * inv_n;
+                out.caustic.at(x, y) = sum.caustic * inv_n;
+                out.specular.at(x, y) = sum.specular * inv_n;
+                out.beauty.at(x, y) = sum.sum() * inv_n;
+                for (int e = 0; e < max_extra_layers; ++e) out.extra[size_t(e)].at(x, y) = sum.extra[size_t(e)] * inv_n;
+            }
+    });
+    out.caustic_cpu_s = shader.caustic_cpu_s();
+    return out;
+}
+
+void validate(const ShadingSettings& settings, const std::string& where) {
+    check_setting_range(where + "/samples_per_pixel", settings.samples_per_pixel, 1, 1 << 20);
+    check_setting_range(where + "/direct_samples", settings.direct_samples, 1, 4096);
+    check_setting_range(where + "/max_specular_depth", settings.max_specular_depth, 0, 10000);
+    validate(settings.caustic_estimate, where + "/caustic_estimate");
+}
+
+}  // namespace steadylight

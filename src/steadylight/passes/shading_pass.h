@@ -1,0 +1,111 @@
+// The shading pass of photon mapping: every pixel's camera rays, L_r = L_d + L_i + L_c + L_s.
+// Direct light by stratified shadow rays, caustics from the caustic map, specular and glossy by
+// recursive ray tracing; the indirect irradiance L_i comes from the method (the irradiance cache
+// of --method photon, or the localized method's blend of L_y and L_t), which may also fill
+// layers of its own.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "steadylight/base/image.h"
+#include "steadylight/photons/photon_map.h"
+#include "steadylight/shading/frame_context.h"
+#include "steadylight/shading/surface_point.h"
+
+namespace steadylight {
+
+struct ShadingSettings {
+    int samples_per_pixel = 16;    // camera rays per pixel, stratified
+    int direct_samples = 2;        // shadow rays per diffuse hit and camera ray, stratified over the pixel
+    int max_specular_depth = 8;    // mirror, glass and glossy bounces followed from the camera
+    DensitySettings caustic_estimate{.k = 50, .max_radius = 0.2f};
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(ShadingSettings, samples_per_pixel, direct_samples, max_specular_depth,
+                                                caustic_estimate)
+void validate(const ShadingSettings& settings, const std::string& where);
+
+/// Up to four layers of the method's own (influence, L_y, L_t, ...), one value per camera ray.
+constexpr int max_extra_layers = 4;
+using ExtraLayers = std::array<Rgb, max_extra_layers>;
+
+/// Indirect irradiance found for a pixel's earlier camera rays, so that its later rays landing
+/// on the same surface close by can reuse it: the cache's indirect light varies over several
+/// pixels (records reach at least CacheSettings::min_spacing_px), so one look-up serves the
+/// pixel, and 16 camera rays cost about one look-up instead of 16 (the same holds for caustic
+/// estimates, whose radius spans many pixels). Rays hitting another object, or a surface turned
+/// by more than about 8 degrees (an edge, a crease), look up their own.
+class PixelMemo {
+public:
+    using Values = std::array<Rgb, 3>;  // what the method needs to remember (e.g. L_y and L_t)
+
+    /// Values stored for a point of the same object within `reach` of sp.p, with a normal close to n.
+    const Values* find(const SurfacePoint& sp, Vec3 n, float reach) const;
+    /// Remembers values at (sp, n); when full, the values are simply not kept.
+    void add(const SurfacePoint& sp, Vec3 n, const Values& values);
+    void clear() { m_count = 0; }
+
+private:
+    struct Entry {
+        int object;
+        Vec3 p, n;
+        Values values;
+    };
+    static constexpr int capacity = 4;
+    std::array<Entry, capacity> m_entries;
+    int m_count = 0;
+};
+
+/// Which camera ray of which pixel is being shaded.
+struct PixelSample {
+    int x = 0, y = 0;
+    int sample = 0;   // 0 .. samples_per_pixel - 1
+    int samples = 1;
+    /// For points the camera sees directly: the method's memo for the pixel (the shading pass
+    /// keeps one of its own for caustics) and how far from its point a value may be reused (about
+    /// a pixel's world size there). Null for points seen through mirrors and glass.
+    PixelMemo* memo = nullptr;
+    PixelMemo* caustic_memo = nullptr;
+    float reach = 0;
+};
+
+/// The values `compute()` returns at (sp, n), or those an earlier camera ray of the same pixel
+/// found within `reach` of sp.p on the same surface (see PixelMemo). No memo: always compute().
+template <class Compute>
+PixelMemo::Values remembered(PixelMemo* memo, float reach, const SurfacePoint& sp, Vec3 n, Compute&& compute) {
+    if (!memo) return compute();
+    if (const PixelMemo::Values* values = memo->find(sp, n, reach)) return *values;
+    const PixelMemo::Values values = compute();
+    memo->add(sp, n, values);
+    return values;
+}
+
+/// Indirect irradiance at diffuse point `sp` with normal `n` (facing the viewer), for a camera
+/// ray of `pixel`. `extra` is non-null for the points the camera sees directly: the method adds
+/// its layers there (each ray's values are averaged over the pixel's rays).
+using IndirectIrradiance = std::function<Rgb(const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra)>;
+
+struct ShadedFrame {
+    Image beauty, direct, indirect, caustic, specular;
+    std::array<Image, max_extra_layers> extra;
+    double caustic_cpu_s = 0;  // time in caustic estimates, summed over threads
+};
+
+ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
+                        const IndirectIrradiance& indirect);
+
+/// Moves the shading pass's common layers into a frame that has members of the same names.
+template <class FrameImages>
+void take_common_layers(ShadedFrame& shaded, FrameImages& out) {
+    out.beauty = std::move(shaded.beauty);
+    out.direct = std::move(shaded.direct);
+    out.indirect = std::move(shaded.indirect);
+    out.caustic = std::move(shaded.caustic);
+    out.specular = std::move(shaded.specular);
+}
+
+}  // namespace steadylight
