@@ -9,9 +9,9 @@
 
 #include <cstdio>
 
-#include "steadylight/shading/frame_context.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/photons/photon_tracer.h"
+#include "steadylight/shading/frame_context.h"
 
 using namespace steadylight;
 

@@ -14,10 +14,10 @@
 
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
-#include "steadylight/run/console.h"
-#include "steadylight/run/interrupt.h"
 #include "steadylight/render.h"
 #include "steadylight/report/report.h"
+#include "steadylight/run/console.h"
+#include "steadylight/run/interrupt.h"
 
 using namespace steadylight;
 

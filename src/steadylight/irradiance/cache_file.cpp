@@ -18,8 +18,8 @@
 #include <system_error>
 #include <vector>
 
-#include "steadylight/base/hash.h"
 #include "steadylight/base/atomic_file.h"
+#include "steadylight/base/hash.h"
 
 namespace steadylight {
 namespace {

@@ -9,9 +9,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "steadylight/base/settings_check.h"
 #include "steadylight/base/check.h"
 #include "steadylight/base/rng.h"
+#include "steadylight/base/settings_check.h"
 
 namespace steadylight {
 namespace {

@@ -10,10 +10,10 @@
 #include <cstdint>
 #include <unordered_map>
 
-#include "steadylight/base/settings_check.h"
 #include "steadylight/base/check.h"
 #include "steadylight/base/ray.h"  // infinity
 #include "steadylight/base/rng.h"
+#include "steadylight/base/settings_check.h"
 
 namespace steadylight {
 namespace {

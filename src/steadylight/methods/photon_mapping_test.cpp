@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "steadylight/passes/photon_gather.h"
 #include "steadylight/output/image_writer.h"
+#include "steadylight/passes/photon_gather.h"
 
 namespace steadylight {
 namespace {

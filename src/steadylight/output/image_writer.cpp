@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "steadylight/base/error.h"
 #include "steadylight/base/atomic_file.h"
+#include "steadylight/base/error.h"
 
 namespace steadylight {
 namespace {

@@ -8,9 +8,9 @@
 #include <functional>
 
 #include "steadylight/base/image.h"
-#include "steadylight/shading/frame_context.h"
 #include "steadylight/irradiance/cache_builder.h"
 #include "steadylight/photons/photon_map.h"
+#include "steadylight/shading/frame_context.h"
 #include "steadylight/shading/surface_point.h"
 
 namespace steadylight {

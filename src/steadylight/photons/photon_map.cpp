@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "steadylight/base/settings_check.h"
 #include "steadylight/base/parallel.h"
+#include "steadylight/base/settings_check.h"
 
 namespace steadylight {
 namespace {

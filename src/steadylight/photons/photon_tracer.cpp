@@ -2,10 +2,10 @@
 
 #include <vector>
 
-#include "steadylight/base/settings_check.h"
 #include "steadylight/base/halton.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/rng.h"
+#include "steadylight/base/settings_check.h"
 #include "steadylight/shading/surface_point.h"
 
 namespace steadylight {

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "steadylight/base/error.h"
 #include "steadylight/base/atomic_file.h"
+#include "steadylight/base/error.h"
 #include "steadylight/report/frame_catalog.h"
 #include "steadylight/report/html.h"
 #include "steadylight/report/report_images.h"

@@ -7,14 +7,14 @@
 #include <filesystem>
 #include <regex>
 
-#include "steadylight/base/error.h"
-#include "support/input_error.h"
-#include "steadylight/passes/frame_stats.h"
 #include "steadylight/base/atomic_file.h"
+#include "steadylight/base/error.h"
 #include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
+#include "steadylight/passes/frame_stats.h"
 #include "steadylight/report/html.h"
+#include "support/input_error.h"
 
 namespace steadylight {
 namespace {

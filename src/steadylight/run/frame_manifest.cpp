@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "steadylight/base/hash.h"
 #include "steadylight/base/atomic_file.h"
+#include "steadylight/base/hash.h"
 #include "steadylight/output/frame_names.h"
 
 namespace steadylight {

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "steadylight/base/error.h"
+#include "support/input_error.h"
 
 namespace steadylight {
 namespace {
@@ -121,13 +122,8 @@ TEST_F(SettingsFile, OlderFormatIsRefusedSayingWhy) {
     older["render"].erase("format_version");
     older["render"]["localized"]["base"] = older["render"]["photon"];
     std::ofstream(m_path) << older.dump(2);
-    try {
-        write_settings_file(m_path, json({0, 1}), false);
-        FAIL() << "expected an InputError";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("settings file format 1, this steadylight writes format 2"), std::string::npos)
-            << e.what();
-    }
+    const std::string error = testing::input_error_of([&] { write_settings_file(m_path, json({0, 1}), false); });
+    EXPECT_NE(error.find("settings file format 1, this steadylight writes format 2"), std::string::npos) << error;
     EXPECT_NO_THROW(write_settings_file(m_path, json({0, 1}), true));
     EXPECT_EQ(read()["render"]["format_version"], settings_format_version);
 }
