@@ -39,7 +39,7 @@ struct RawOptions {
     std::optional<int> spp;
     int threads = 0;
     int gather_samples = 0;
-    std::string method = std::string(method_info(Method::localized).name);
+    std::string method = std::string(method_info(MethodSettings{}.method).name);  // the default
     std::string exr_type = "half", view_transform = "standard";
 };
 

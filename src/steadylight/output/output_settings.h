@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "steadylight/base/settings_check.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/view_transform.h"
 
@@ -25,5 +26,8 @@ inline void to_json(nlohmann::json& json, const OutputSettings& s) {
             {"view_transform", s.view.curve == ViewCurve::filmic ? "filmic" : "standard"},
             {"dither", s.view.dither}};
 }
+
+/// Throws InputError for an exposure out of range (or NaN).
+inline void validate(const OutputSettings& s) { check_setting_range("/output/exposure_ev", s.view.exposure_ev, -64.0f, 64.0f); }
 
 }  // namespace steadylight

@@ -8,6 +8,7 @@ namespace steadylight {
 void validate(const RenderSettings& settings) {
     if (settings.width) check_setting_range("/size", *settings.width, 1, 1 << 16);
     if (settings.height) check_setting_range("/size", *settings.height, 1, 1 << 16);
+    validate(settings.output);
     validate(static_cast<const MethodSettings&>(settings));
 }
 
