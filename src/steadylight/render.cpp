@@ -1,5 +1,6 @@
 #include "steadylight/render.h"
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 
@@ -22,9 +23,20 @@
 namespace steadylight {
 namespace {
 
+/// True when something in the scene emits light: an emitting object or a point or spot light.
+bool has_light(const SceneDesc& desc) {
+    return std::any_of(desc.objects.begin(), desc.objects.end(), [](const ObjectDesc& o) { return o.is_emitter(); }) ||
+           std::any_of(desc.point_lights.begin(), desc.point_lights.end(), [](const PointLightDesc& light) {
+               return !is_black(light.intensity);
+           });
+}
+
 Scene load_scene(const RenderSettings& settings) {
     Scene scene(load_scene_desc(settings.scene_file));
     const SceneDesc& desc = scene.desc();
+    if (!has_light(desc))
+        spdlog::warn("{}: the scene has no light (no object with an emission, no point or spot light with an "
+                     "intensity): every frame renders black", settings.scene_file);
     scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
     return scene;
 }

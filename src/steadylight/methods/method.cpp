@@ -35,6 +35,7 @@ const std::vector<LayerOf<LocalizedFrame>> localized_layers = {
     {"L_y", &LocalizedFrame::L_y},
     {"L_t", &LocalizedFrame::L_t},
     {"influence", &LocalizedFrame::influence, true},
+    {"dynamic", &LocalizedFrame::dynamic, true},
     {"static_records", &LocalizedFrame::static_records, true},
     {"dynamic_records", &LocalizedFrame::dynamic_records, true},
 };

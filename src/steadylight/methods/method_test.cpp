@@ -80,12 +80,16 @@ TEST(Methods, FramesHaveTheTablesLayersAndStatistics) {
         for (const NamedImage& layer : rendered.layers) {
             names.push_back(layer.name);
             EXPECT_EQ(layer.image.pixels.size(), rendered.beauty.pixels.size()) << layer.name;
-            // Grey: one value per pixel, the influence and the record masks.
-            EXPECT_EQ(layer.grey, layer.name == "influence" || layer.name.ends_with("records")) << layer.name;
+            // Grey: one value per pixel, the influence and the masks.
+            EXPECT_EQ(layer.grey, layer.name == "influence" || layer.name == "dynamic" || layer.name.ends_with("records"))
+                << layer.name;
+            for (const Rgb& p : layer.image.pixels) ASSERT_TRUE(is_finite(p) && max_component(p) <= 1000) << layer.name;
         }
         EXPECT_EQ(names, info.layers) << info.name;
         ASSERT_EQ(rendered.stats.has_value(), info.method != Method::path) << info.name;
-        if (rendered.stats) EXPECT_EQ(rendered.stats->method, info.name);
+        if (rendered.stats) {
+            EXPECT_EQ(rendered.stats->method, info.name);
+        }
     }
 }
 

@@ -1,5 +1,7 @@
 #include "steadylight/output/image_writer.h"
 
+#include <algorithm>
+
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -27,6 +29,13 @@ std::vector<std::pair<std::string, int>> layer_channels(const std::string& layer
     return channels;
 }
 
+/// `value` as a half, clamped to the largest finite half (65504): above it a half is +inf, which
+/// a compositor's blur would spread over the image.
+half to_finite_half(float value) {
+    constexpr float max_half = 65504.0f;
+    return half(std::clamp(value, -max_half, max_half));
+}
+
 /// One channel's pixels, converted to the file's pixel type and kept alive until written.
 struct ChannelData {
     std::vector<half> halves;
@@ -34,7 +43,7 @@ struct ChannelData {
 
     ChannelData(const Image& image, int component, ExrPixelType type) {
         for (const Rgb& pixel : image.pixels) {
-            if (type == ExrPixelType::half) halves.push_back(half(pixel[component]));
+            if (type == ExrPixelType::half) halves.push_back(to_finite_half(pixel[component]));
             else floats.push_back(pixel[component]);
         }
     }

@@ -27,7 +27,7 @@ IrradianceCache corrected_cache(const IrradianceCache& static_cache, const Photo
 }
 
 /// The shading pass's slots for the layers of this method's own (shading_pass.h ExtraLayers).
-enum ExtraSlot { influence_slot, L_y_slot, L_t_slot, indirect_static_slot, slot_count };
+enum ExtraSlot { influence_slot, dynamic_slot, L_y_slot, L_t_slot, indirect_static_slot, slot_count };
 static_assert(slot_count <= max_extra_layers);
 
 /// What a camera ray found at its diffuse point, for the layers.
@@ -43,8 +43,12 @@ struct IndirectParts {
 void fill_layers(const FrameContext& context, const IrradianceCache& static_cache, const SurfacePoint& sp, Vec3 n,
                  const PixelSample& pixel, const IndirectParts& parts, ExtraLayers& extra) {
     const Rgb albedo_over_pi = context.bsdf_of(sp.object).diffuse_reflectance() * inv_pi;
-    // Dynamic objects always take L_y: shown as the largest influence.
-    extra[influence_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? 1e6f : std::min(parts.influence, 1e6f));
+    // Dynamic objects always take L_y: shown as the largest influence, and in their own mask.
+    // The influence is infinite where there is no static indirect light; every layer stays
+    // finite (a compositor's blur would spread an inf), and far below the half-float range.
+    constexpr float max_influence_shown = 1000;  // 1000 x tau_upper: L_y alone long before
+    extra[influence_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? max_influence_shown : std::min(parts.influence, max_influence_shown));
+    extra[dynamic_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? 1.0f : 0.0f);
     extra[L_y_slot] = albedo_over_pi * parts.L_y;
     extra[L_t_slot] = albedo_over_pi * parts.L_t;
     if (pixel.sample == 0 && !parts.on_dynamic)
@@ -117,6 +121,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
 
     take_common_layers(shaded, out);
     out.influence = std::move(shaded.extra[influence_slot]);
+    out.dynamic = std::move(shaded.extra[dynamic_slot]);
     out.L_y = std::move(shaded.extra[L_y_slot]);
     out.L_t = std::move(shaded.extra[L_t_slot]);
     out.indirect_static = std::move(shaded.extra[indirect_static_slot]);

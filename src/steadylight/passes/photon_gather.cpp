@@ -21,21 +21,20 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
         if (!hit) return result;
         if (depth == 0) result.distance = hit->t;
-        const SurfacePoint sp = face_towards(make_surface_point(context.scene, context.frame, ray, *hit), ray.d);
-        const Bsdf& bsdf = context.bsdf_of(sp.object);
+        const SurfacePoint surface = make_surface_point(context.scene, context.frame, ray, *hit);
+        const Bsdf& bsdf = context.bsdf_of(surface.object);
         if (bsdf.is_diffuse()) {
-            const std::optional<Rgb> E = photons.lookup(sp.p, sp.ng, max_radius);
+            const std::optional<Rgb> E = photons.lookup(surface.p, face_towards(surface, ray.d).ng, max_radius);
             if (E) result.L = beta * bsdf.diffuse_reflectance() * *E * inv_pi;
             return result;
         }
         // Follow specular and glossy surfaces along one deterministic sample.
-        const Frame frame = Frame::from_normal(sp.ns);
-        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(sp.object)));
+        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(surface.object)));
         const float u_lobe = rng.next_float();
-        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-ray.d), rng.next_vec2(), u_lobe, TransportMode::radiance);
-        if (!bs) return result;
-        beta *= bs->weight;
-        ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+        const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
+        if (!bounce) return result;
+        beta *= bounce->sample.weight;
+        ray = bounce->ray;
     }
     return result;
 }
@@ -48,16 +47,18 @@ std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility
         const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
         if (!hit) return std::nullopt;
         distance += hit->t;
-        const SurfacePoint sp = face_towards(make_surface_point(context.scene, context.frame, ray, *hit), ray.d);
-        const Bsdf& bsdf = context.bsdf_of(sp.object);
-        if (bsdf.is_diffuse()) return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(distance), sp.object};
+        const SurfacePoint surface = make_surface_point(context.scene, context.frame, ray, *hit);
+        const Bsdf& bsdf = context.bsdf_of(surface.object);
+        if (bsdf.is_diffuse()) {
+            const SurfacePoint sp = face_towards(surface, ray.d);
+            return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(distance), sp.object};
+        }
         if (!bsdf.is_delta()) return std::nullopt;
         // Through glass along the refracted ray (the likelier branch, unless totally reflected),
         // off mirrors along the reflected one.
-        const Frame frame = Frame::from_normal(sp.ns);
-        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-ray.d), {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
-        if (!bs) return std::nullopt;
-        ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+        const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
+        if (!bounce) return std::nullopt;
+        ray = bounce->ray;
     }
     return std::nullopt;
 }

@@ -109,10 +109,9 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
     if (!bsdf.is_delta()) c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
     if (depth >= m_settings.max_specular_depth) return c;
     const float u_lobe = rng.next_float();
-    const std::optional<BsdfSample> bs = bsdf.sample(wo, rng.next_vec2(), u_lobe, TransportMode::radiance);
-    if (!bs) return c;
-    const Ray next = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
-    c.specular = bs->weight * shade(next, depth + 1, bs->is_delta, pixel, LightStrata{}, rng).sum();
+    const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
+    if (!bounce) return c;
+    c.specular = bounce->sample.weight * shade(bounce->ray, depth + 1, bounce->sample.is_delta, pixel, LightStrata{}, rng).sum();
     return c;
 }
 

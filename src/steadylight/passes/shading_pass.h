@@ -29,8 +29,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(ShadingSettings, samples_per_pix
                                                 caustic_estimate)
 void validate(const ShadingSettings& settings, const std::string& where);
 
-/// Up to four layers of the method's own (influence, L_y, L_t, ...), one value per camera ray.
-constexpr int max_extra_layers = 4;
+/// Up to five layers of the method's own (influence, L_y, L_t, ...), one value per camera ray.
+constexpr int max_extra_layers = 5;
 using ExtraLayers = std::array<Rgb, max_extra_layers>;
 
 /// Indirect irradiance found for a pixel's earlier camera rays, so that its later rays landing

@@ -44,4 +44,12 @@ Rgb emitted_radiance(const ObjectDesc& object, Vec3 ng, Vec3 w) {
     return object.two_sided_emission || dot(ng, w) > 0 ? object.emission : Rgb{};
 }
 
+std::optional<Bounce> sample_bounce(const Bsdf& bsdf, const SurfacePoint& sp, Vec3 d, Vec2 u, float u_lobe,
+                                    TransportMode mode) {
+    const Frame frame = Frame::from_normal(sp.ns);
+    const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-d), u, u_lobe, mode);
+    if (!bs) return std::nullopt;
+    return Bounce{*bs, spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi))};
+}
+
 }  // namespace steadylight

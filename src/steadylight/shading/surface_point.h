@@ -2,7 +2,10 @@
 // Computed from the object-space shape and the object's placement at the frame.
 #pragma once
 
+#include <optional>
+
 #include "steadylight/scene/scene.h"
+#include "steadylight/shading/bsdf.h"
 #include "steadylight/trace/ray_tracer.h"
 
 namespace steadylight {
@@ -15,6 +18,18 @@ struct SurfacePoint {
 };
 
 SurfacePoint make_surface_point(const Scene& scene, const FrameState& frame, const Ray& ray, const Hit& hit);
+
+/// A sampled scattering: the BSDF sample and the ray that continues from the surface.
+struct Bounce {
+    BsdfSample sample;
+    Ray ray;
+};
+
+/// Samples `bsdf` at `sp` for a ray arriving along `d`, in the frame of the surface's own
+/// normals (not turned towards the ray): the dielectric tells entering from leaving by the side
+/// of its front, outward normal that -d lies on; the reflective BSDFs are two-sided.
+std::optional<Bounce> sample_bounce(const Bsdf& bsdf, const SurfacePoint& sp, Vec3 d, Vec2 u, float u_lobe,
+                                    TransportMode mode);
 
 /// Radiance that `object` emits from a point with front normal `ng` towards direction `w`.
 Rgb emitted_radiance(const ObjectDesc& object, Vec3 ng, Vec3 w);
