@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes scenes/ball.json, scenes/table.json and scenes/cornell.json.
+"""Writes the scenes: scenes/ball.json, table.json and cornell.json, and the truth suite's
+corridor.json, mirror_room.json, flythrough.json and glass_move.json (docs/truth-suite.md).
 
 BALL and TABLE follow ../shared/scenes/BALL.md and TABLE.md exactly; their keyframes (one per
 frame, linear in between) are computed here. The JSON files are committed too, so the renderer
@@ -29,10 +30,10 @@ def lambert(reflectance):
     return {"type": "lambert", "reflectance": reflectance}
 
 
-def keyframes(values):
-    """A linear track with one key per frame, frame f at time f / FPS."""
+def keyframes(values, fps=FPS):
+    """A linear track with one key per frame, frame f at time f / fps."""
     return {"interpolation": "linear",
-            "times": [round(f / FPS, 6) for f in range(FRAMES)],
+            "times": [round(f / fps, 6) for f in range(len(values))],
             "values": [[round(c, 6) for c in v] for v in values]}
 
 
@@ -131,6 +132,85 @@ def table_scene():
             "materials": materials, "objects": objects}
 
 
+SUITE_FRAMES = 30  # the truth suite's animations: one second at 30 fps
+
+
+def suite_times():
+    return [f / (SUITE_FRAMES - 1) for f in range(SUITE_FRAMES)]
+
+
+def corridor_scene():
+    """A corridor lit by three small ceiling panels, a point lamp and a spot lamp (no mirrors, no
+    glass: a path tracer cannot find a point light's caustics), with a figure walking along it
+    past the camera. Several small lights: the direct light's noise shows on the flat walls."""
+    w, h, d = 2.4, 2.6, 10.0
+    objects = [{"name": name, "shape": shape, "material": "wall" if name not in ("floor", "ceiling") else name}
+               for name, shape in room(w, h, d, closed_front=True).items()]
+    for i, z in enumerate([2.0, 5.0, 8.0]):
+        objects.append(ceiling_light(f"panel{i}", 1.0, 1.4, h - 0.01, z - 0.2, z + 0.2, [14, 13, 11]))
+    ts = suite_times()
+    objects.append({"name": "figure", "shape": box([0, 0, 0], [0.4, 1.7, 0.3]), "material": "figure",
+                    "animation": {"translation": keyframes([[0.8, 0.85, 7.0 - 5.5 * t] for t in ts])}})
+    lights = [{"type": "point", "name": "lamp", "position": [1.9, 1.8, 9.2], "intensity": [3.0, 2.6, 2.0]},
+              {"type": "spot", "name": "spot", "position": [0.2, 2.3, 4.0], "direction": [0.6, -1, 0.3],
+               "intensity": [6, 6, 7], "cone_degrees": 35}]
+    materials = {"wall": lambert([0.70, 0.68, 0.62]), "floor": lambert([0.45, 0.40, 0.35]),
+                 "ceiling": lambert([0.80, 0.80, 0.80]), "figure": lambert([0.20, 0.35, 0.60])}
+    camera = {"position": [1.6, 1.5, 0.3], "look_at": [1.1, 1.2, 6.0], "fov_y": 55, "resolution": [320, 240]}
+    return {"name": "corridor", "frames": {"count": SUITE_FRAMES, "fps": FPS}, "camera": camera,
+            "materials": materials, "objects": objects, "lights": lights}
+
+
+def mirror_room_scene():
+    """BALL's room with a mirror on the left wall and a glossy floor, both seeing a ball that
+    rolls across: specular paths that meet a moving object."""
+    objects = cornell_room_objects()
+    for o in objects:
+        if o["name"] == "floor":
+            o["material"] = "glossy_floor"
+    objects.append({"name": "mirror", "shape": quad([0.02, 1.0, 1.0], [0, 2.8, 0], [0, 0, 3.5]), "material": "mirror"})
+    ts = suite_times()
+    objects.append({"name": "ball", "shape": {"type": "sphere", "center": [0, 0, 0], "radius": 0.6},
+                    "material": "blue", "animation": {"translation": keyframes([[4.3 - 2.6 * t, 0.6, 2.2] for t in ts])}})
+    materials = cornell_materials()
+    materials["glossy_floor"] = {"type": "glossy", "reflectance": [0.55, 0.5, 0.45], "roughness": 0.35}
+    materials["mirror"] = {"type": "mirror", "reflectance": [0.9, 0.9, 0.9]}
+    return {"name": "mirror_room", "frames": {"count": SUITE_FRAMES, "fps": FPS}, "camera": ball_camera(),
+            "materials": materials, "objects": objects}
+
+
+def flythrough_scene():
+    """The Cornell box seen by a camera that moves in and turns (the static cache covers every
+    view of the segment), with a small box sliding on the floor."""
+    objects = cornell_room_objects()
+    objects.append({"name": "short_box", "shape": box([0, 0, 0], [1.65, 1.65, 1.65]), "material": "white",
+                    "transform": {"translation": [3.7, 0.825, 1.9], "rotation": {"axis": [0, 1, 0], "degrees": -17}}})
+    ts = suite_times()
+    objects.append({"name": "cube", "shape": box([0, 0, 0], [0.6, 0.6, 0.6]), "material": "blue",
+                    "animation": {"translation": keyframes([[1.0 + 1.5 * t, 0.3, 1.0] for t in ts])}})
+    camera = {"position": [2.75, 2.75, -7.2], "look_at": [2.75, 2.75, 0], "fov_y": 40, "resolution": [320, 240],
+              "animation": {"translation": keyframes([[2.75 + 1.2 * t, 2.4 + 0.6 * t, -7.2 + 3.0 * t] for t in ts]),
+                            "rotation": keyframes([y_rotation(180 - 12 * t) for t in ts])}}
+    return {"name": "flythrough", "frames": {"count": SUITE_FRAMES, "fps": FPS}, "camera": camera,
+            "materials": cornell_materials(), "objects": objects}
+
+
+def glass_move_scene():
+    """A glass sphere moving under an area light over a diffuse floor: dynamic caustics and
+    specular paths through a moving object."""
+    objects = [{"name": name, "shape": shape, "material": "white" if name != "back" else "green"}
+               for name, shape in room(5.5, 5.5, 5.5, closed_front=False).items()]
+    objects.append(ceiling_light("light", 2.2, 3.3, 5.49, 2.2, 3.3, [30, 28, 24]))
+    ts = suite_times()
+    objects.append({"name": "glass_ball", "shape": {"type": "sphere", "center": [0, 0, 0], "radius": 0.7},
+                    "material": "glass", "animation": {"translation": keyframes([[1.6 + 2.3 * t, 1.3, 2.6] for t in ts])}})
+    objects.append({"name": "block", "shape": box([4.2, 0.5, 4.0], [1.0, 1.0, 1.0]), "material": "red"})
+    materials = {"white": lambert([0.725, 0.71, 0.68]), "green": lambert([0.14, 0.45, 0.091]),
+                 "red": lambert([0.63, 0.065, 0.05]), "glass": {"type": "dielectric", "ior": 1.5}}
+    return {"name": "glass_move", "frames": {"count": SUITE_FRAMES, "fps": FPS}, "camera": ball_camera(),
+            "materials": materials, "objects": objects}
+
+
 def dumps(scene):
     """Indented JSON with short numeric arrays kept on one line."""
     text = json.dumps(scene, indent=2)
@@ -138,7 +218,10 @@ def dumps(scene):
 
 
 def main():
-    for name, scene in [("ball", ball_scene()), ("table", table_scene()), ("cornell", cornell_scene())]:
+    scenes = [("ball", ball_scene()), ("table", table_scene()), ("cornell", cornell_scene()),
+              ("corridor", corridor_scene()), ("mirror_room", mirror_room_scene()),
+              ("flythrough", flythrough_scene()), ("glass_move", glass_move_scene())]
+    for name, scene in scenes:
         with open(os.path.join(SCENES, name + ".json"), "w") as f:
             f.write(dumps(scene))
 
