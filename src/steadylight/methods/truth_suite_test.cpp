@@ -16,13 +16,42 @@ namespace {
 
 const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 
-struct Case {
+/// A suite scene and how close its 80x60 frame 0 must come to the reference with the photon
+/// methods (16 camera rays per pixel). The per-pixel figure is mostly their noise: measured
+/// about 4% on the diffuse scenes, 9% on TABLE, 17% with the corridor's small lights (direct
+/// light noise), 21% with a moving glass ball's caustics and 25% with a glossy floor; 4x4 blocks
+/// show bias (1.2-2.2% on the diffuse scenes and TABLE, 4-7% on the noisy ones). The
+/// tolerances are those figures with a margin.
+struct SceneTolerance {
     const char* scene;
-    Method method;
+    double pixel_rmse, block_rmse;
 };
 
+constexpr SceneTolerance tolerances[] = {
+    {"cornell", 0.06, 0.025},     {"ball", 0.06, 0.025},       {"table", 0.11, 0.035},
+    {"corridor", 0.21, 0.06},     {"mirror_room", 0.30, 0.09}, {"flythrough", 0.06, 0.025},
+    {"glass_move", 0.26, 0.06},
+};
+
+struct Case {
+    SceneTolerance tolerance;
+    Method method;
+    const char* scene() const { return tolerance.scene; }
+};
+
+std::vector<Case> all_cases() {
+    std::vector<Case> cases;
+    for (const SceneTolerance& t : tolerances)
+        for (const Method method : {Method::photon, Method::localized, Method::frozen, Method::path})
+            if (method == Method::photon || method == Method::path || std::string(t.scene) != "cornell")
+                cases.push_back({t, method});
+    return cases;
+}
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.scene() << " " << method_info(c.method).name; }
+
 std::string case_name(const ::testing::TestParamInfo<Case>& info) {
-    return std::string(info.param.scene) + "_" + std::string(method_info(info.param.method).name);
+    return std::string(info.param.scene()) + "_" + std::string(method_info(info.param.method).name);
 }
 
 /// Small settings for an 80x60 frame: the photon counts of the golden-image tests.
@@ -41,7 +70,7 @@ struct Rendered {
 };
 
 Rendered render_frame_zero(const Case& c) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/" + c.scene + ".json"));
+    Scene scene(load_scene_desc(source_dir + "/scenes/" + c.scene() + ".json"));
     scene.set_resolution(80, 60);
     const MethodSettings settings = small_settings(c.method);
     const MethodInfo& info = method_info(c.method);
@@ -69,19 +98,23 @@ double mean_ratio_where(const Image& image, const Image& reference, const PixelM
 
 class TruthSuite : public ::testing::TestWithParam<Case> {};
 
-// Tolerances at 80x60 (measured figures in the README's truth-suite section): the per-pixel
-// figure is mostly the noise of 16 camera rays (64 for the path tracer); 4x4 blocks and the
-// mean show bias. A dark glass sphere (each hit taken as entering the glass) fails the glass check by far.
+// The scene's tolerance for the photon methods; the path tracer's 64 samples per pixel are
+// noisier (2.5x per pixel, 2x on blocks). The mean within 2%, except the frozen baseline's, which
+// misses the indirect light that moving objects change by design (4.4% on the corridor): 5%, and
+// 1.5x on blocks.
+// Where the camera sees glass, the mean through it within 10%: the dark glass gave 26%.
 TEST_P(TruthSuite, FrameZeroAgreesWithTheReference) {
     const Case c = GetParam();
     const Rendered rendered = render_frame_zero(c);
-    const Image reference = read_exr(source_dir + "/tests/scenes/golden/" + c.scene + "_0000.exr");
+    const Image reference = read_exr(source_dir + "/tests/scenes/golden/" + c.scene() + "_0000.exr");
     const ImageError e = image_error(rendered.beauty, reference, rendered.emitters);
-    std::printf("%s %s: per pixel %.4f, 4x4 blocks %.4f, mean ratio %.4f\n", c.scene,
+    std::printf("%s %s: per pixel %.4f, 4x4 blocks %.4f, mean ratio %.4f\n", c.scene(),
                 std::string(method_info(c.method).name).c_str(), e.pixel_rmse, e.block_rmse, e.mean_ratio);
-    EXPECT_LT(e.pixel_rmse, 0.15);
-    EXPECT_LT(e.block_rmse, 0.06);
-    EXPECT_NEAR(e.mean_ratio, 1.0, 0.02);
+    const bool path = c.method == Method::path;
+    EXPECT_LT(e.pixel_rmse, c.tolerance.pixel_rmse * (path ? 2.5 : 1));
+    const bool frozen = c.method == Method::frozen;
+    EXPECT_LT(e.block_rmse, c.tolerance.block_rmse * (path ? 2 : frozen ? 1.5 : 1));
+    EXPECT_NEAR(e.mean_ratio, 1.0, frozen ? 0.05 : 0.02);
     long glass_pixels = 0;
     for (const uint8_t g : rendered.glass) glass_pixels += g;
     if (glass_pixels > 0) {
@@ -91,13 +124,7 @@ TEST_P(TruthSuite, FrameZeroAgreesWithTheReference) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, TruthSuite,
-                         ::testing::Values(Case{"cornell", Method::photon}, Case{"cornell", Method::path},
-                                           Case{"ball", Method::photon}, Case{"ball", Method::localized},
-                                           Case{"ball", Method::frozen}, Case{"ball", Method::path},
-                                           Case{"table", Method::photon}, Case{"table", Method::localized},
-                                           Case{"table", Method::frozen}, Case{"table", Method::path}),
-                         case_name);
+INSTANTIATE_TEST_SUITE_P(Scenes, TruthSuite, ::testing::ValuesIn(all_cases()), case_name);
 
 }  // namespace
 }  // namespace steadylight
