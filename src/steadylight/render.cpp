@@ -198,8 +198,8 @@ std::string describe_scene(const std::string& scene_file) {
     const Scene scene(load_scene_desc(scene_file));
     const SceneDesc& desc = scene.desc();
     std::string text = fmt::format("scene {} ({})\n", desc.name, scene_file);
-    text += fmt::format("frames: {} at {} fps ({:.2f} s), {} segment(s)\n", desc.frame_count, desc.fps,
-                        desc.frame_count / desc.fps, scene.segments().size());
+    text += fmt::format("frames: {} at {:.6g} fps ({}) ({:.2f} s), {} segment(s)\n", desc.frame_count, desc.fps,
+                        describe_fps_source(desc), desc.frame_count / desc.fps, scene.segments().size());
     text += fmt::format("camera: {}x{}, vertical fov {} deg{}\n", desc.camera.width, desc.camera.height,
                         desc.camera.fov_y_deg, is_chain_animated(desc.camera.placement) ? ", animated" : "");
     long triangles = 0;

@@ -2,8 +2,8 @@
 #include "steadylight/scene/gltf_animation.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <utility>
 
@@ -113,41 +113,77 @@ float animation_duration_s(const GltfFile& file, const tinygltf::Animation& anim
     return duration_s;
 }
 
-/// The key spacing of `times` when it is even (within float rounding of k / fps), else 0.
-float even_key_spacing_s(const std::vector<float>& times) {
-    const float dt = (times.back() - times.front()) / float(times.size() - 1);
+// The bounds of a sampled rate: slower keys are hand-set ones far apart, faster ones are not
+// frames anybody renders.
+constexpr double min_sampled_fps = 10;
+constexpr double max_sampled_fps = 240;
+// Keys are evenly spaced when every interval is within this fraction of their mean spacing, and
+// two samplers agree when their spacings are.
+constexpr double spacing_tolerance_rel = 1e-3;
+// A measured rate within this fraction of a whole number is that number (39.0003 is 39): half
+// the 1e-3 between an NTSC rate (30000/1001) and its whole neighbour, and above the drift of
+// float32 times summed step by step over five minutes at up to 120 fps (1.7e-4).
+constexpr double whole_rate_tolerance_rel = 5e-4;
+
+/// The mean spacing of `times` in seconds when every interval is within the tolerance of it,
+/// else nothing. Each float32 time is off by up to half an ulp (FLT_EPSILON / 2 of it), whether
+/// the exporter wrote k / fps or summed a float step, so an interval may miss the mean by up to
+/// FLT_EPSILON times the latest time on top of the relative tolerance.
+std::optional<double> even_key_spacing_s(const std::vector<float>& times) {
+    const double dt = (double(times.back()) - times.front()) / double(times.size() - 1);
+    const double latest_s = std::max(std::abs(double(times.front())), std::abs(double(times.back())));
+    const double slack_s = spacing_tolerance_rel * dt + std::numeric_limits<float>::epsilon() * latest_s;
     for (size_t i = 1; i < times.size(); ++i)
-        if (!(std::abs(times[i] - times[i - 1] - dt) <= 1e-3f * dt)) return 0;
+        if (!(std::abs(double(times[i]) - times[i - 1] - dt) <= slack_s)) return std::nullopt;
     return dt;
 }
 
-/// `rate` snapped to the common frame rate within 0.1% of it, or 0 when there is none.
-float common_frame_rate(float rate) {
-    constexpr std::array<float, 10> rates = {24000 / 1001.0f, 24, 25, 30000 / 1001.0f, 30, 48, 50, 60000 / 1001.0f, 60, 120};
-    for (const float common : rates)
-        if (std::abs(rate - common) <= 1e-3f * common) return common;
-    return 0;
-}
-
-}  // namespace
-
-std::optional<float> sampled_frame_rate(const GltfFile& file) {
-    float rate = 0;
+/// Key times of every LINEAR or STEP sampler with three or more keys: the ones an exporter
+/// samples. CUBICSPLINE keys are hand-set Bezier keys, and two keys are any two moments.
+std::vector<std::vector<float>> sampled_key_times(const GltfFile& file) {
+    std::vector<std::vector<float>> sampled;
     for (size_t a = 0; a < file.model.animations.size(); ++a) {
         const tinygltf::Animation& animation = file.model.animations[a];
         for (size_t s = 0; s < animation.samplers.size(); ++s) {
             const tinygltf::AnimationSampler& sampler = animation.samplers[s];
             if (sampler.interpolation == "CUBICSPLINE") continue;
-            const std::string where = describe("animation", a, animation.name) + ", sampler " + std::to_string(s);
-            const std::vector<float> times = read_floats(file, sampler.input, where + ", input");
-            if (times.size() < 3) continue;
-            const float dt = even_key_spacing_s(times);
-            const float sampler_rate = dt > 0 ? common_frame_rate(1 / dt) : 0;
-            if (sampler_rate == 0 || (rate != 0 && sampler_rate != rate)) return std::nullopt;
-            rate = sampler_rate;
+            const std::string where =
+                describe("animation", a, animation.name) + ", sampler " + std::to_string(s);
+            std::vector<float> times = read_floats(file, sampler.input, where + ", input");
+            if (times.size() >= 3) sampled.push_back(std::move(times));
         }
     }
-    return rate > 0 ? std::optional<float>(rate) : std::nullopt;
+    return sampled;
+}
+
+/// 1 / `spacing_s`, made whole when it is within float noise of a whole number (39.0003 is 39,
+/// 29.97003 stays).
+float rate_of_spacing(double spacing_s) {
+    const double fps = 1 / spacing_s;
+    const double whole = std::round(fps);
+    return float(std::abs(fps - whole) <= whole_rate_tolerance_rel * fps ? whole : fps);
+}
+
+}  // namespace
+
+std::optional<float> sampled_frame_rate(const GltfFile& file) {
+    // Take the spacing of the longest sampler: its mean spacing carries the least rounding.
+    std::optional<double> spacing_s;
+    float longest_s = 0;
+    for (const std::vector<float>& times : sampled_key_times(file)) {
+        const std::optional<double> dt = even_key_spacing_s(times);
+        if (!dt) return std::nullopt;
+        if (spacing_s && std::abs(*dt - *spacing_s) > spacing_tolerance_rel * *spacing_s)
+            return std::nullopt;
+        if (!spacing_s || times.back() - times.front() > longest_s) {
+            spacing_s = dt;
+            longest_s = times.back() - times.front();
+        }
+    }
+    if (!spacing_s) return std::nullopt;
+    const float fps = rate_of_spacing(*spacing_s);
+    if (fps < min_sampled_fps || fps > max_sampled_fps) return std::nullopt;
+    return fps;
 }
 
 AnimatedTrs node_placement(const tinygltf::Node& node) {

@@ -18,9 +18,12 @@ AnimatedTrs node_placement(const tinygltf::Node& node);
 /// longest animation's length in seconds.
 float apply_animations(const GltfFile& file, std::vector<AnimatedTrs>& placements);
 
-/// The frame rate the animations were sampled at, when every LINEAR or STEP sampler with three
-/// or more keys has them evenly spaced at one common rate of film or video (23.976 to 120 fps):
-/// what Blender's exporter writes by default (a key every frame). Otherwise nothing.
+/// The frame rate the animations were sampled at: 1 / the key spacing, when every LINEAR or
+/// STEP sampler with three or more keys has them evenly spaced (within 1e-3 of the spacing) at
+/// one common spacing, and that rate lies in [10, 240] fps. A rate within 5e-4 of a whole number
+/// is made whole (39.0003 -> 39); others stay as measured (29.97). Blender's exporter writes a
+/// key every frame by default. Otherwise (no such sampler, uneven or disagreeing spacings, keys
+/// far apart) nothing.
 std::optional<float> sampled_frame_rate(const GltfFile& file);
 
 }  // namespace steadylight::gltf

@@ -350,8 +350,10 @@ float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera) {
     for (const tinygltf::Node& node : file.model.nodes) placements.push_back(node_placement(node));
     const float duration_s = apply_animations(file, placements);
     if (const std::optional<float> rate = sampled_frame_rate(file)) {
-        spdlog::info("{}: animation keys are sampled at {} fps; using it as the frame rate", path, *rate);
+        spdlog::info("{}: animation keys are one every 1/{:.6g} s; using {:.6g} fps as the frame rate", path,
+                     *rate, *rate);
         desc.fps = *rate;
+        desc.fps_source = FpsSource::gltf_keys;
     }
 
     SceneWalker walker(file, placements, desc, has_camera);

@@ -15,8 +15,9 @@ namespace steadylight {
 /// Adds the glTF file's materials and objects to `desc`; when `desc` has no camera yet
 /// (`has_camera` false) and the file has one, it becomes the scene's camera. Returns the length
 /// of the file's longest animation in seconds (0 when nothing is animated).
-/// A file with animation keys sampled evenly at a common frame rate (as Blender exports by
-/// default) sets `desc.fps` to that rate.
+/// A file whose animation keys are sampled evenly (as Blender exports by default; see
+/// gltf::sampled_frame_rate) sets `desc.fps` to 1 / their spacing and `desc.fps_source` to
+/// FpsSource::gltf_keys.
 float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera);
 
 /// True for a path ending in .gltf or .glb (in any case).

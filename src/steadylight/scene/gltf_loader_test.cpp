@@ -14,6 +14,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -588,6 +589,7 @@ TEST_F(GltfLoader, GlbRendersAsAWholeSceneAtTheRateItsKeysWereSampledAt) {
     EXPECT_EQ(desc.name, "blender");
     EXPECT_FLOAT_EQ(desc.fps, 30);
     EXPECT_EQ(desc.frame_count, 25);  // 0.8 s at 30 fps, both ends included
+    EXPECT_EQ(desc.fps_source, FpsSource::gltf_keys);
     EXPECT_TRUE(find_object(desc, "Cube").is_dynamic());
 }
 
@@ -602,6 +604,128 @@ TEST_F(GltfLoader, UnevenOrRareKeysKeepTheDefaultRate) {
     add_animation(model, b, "translation", "LINEAR", times, values);  // 25 fps disagrees with 1 fps
     write(model, "mixed.glb");
     EXPECT_FLOAT_EQ(load_scene_desc((m_dir / "mixed.glb").string()).fps, 24);
+}
+
+/// `count` key times `1 / fps` apart from 0, summed in float32 one step at a time, as an
+/// exporter that accumulates its time step writes them.
+std::vector<float> summed_key_times(float fps, int count) {
+    std::vector<float> times = {0};
+    const float step_s = 1 / fps;
+    while (times.size() < size_t(count)) times.push_back(times.back() + step_s);
+    return times;
+}
+
+/// camera_model() plus one triangle per entry of `key_times`, moved by a LINEAR sampler with
+/// those key times.
+tinygltf::Model keyed_model(const std::vector<std::vector<float>>& key_times) {
+    tinygltf::Model model = camera_model();
+    const int mesh = add_triangle_mesh(model);
+    for (const std::vector<float>& times : key_times) {
+        const int node = add_node(model, make_node("Mover", mesh));
+        add_animation(model, node, "translation", "LINEAR", times,
+                      std::vector<float>(3 * times.size(), 0));
+    }
+    return model;
+}
+
+/// Frame rates from key spacings: each test loads keyed_model() as a whole scene.
+class GltfFrameRate : public GltfLoader {
+protected:
+    SceneDesc load_keyed(const std::vector<std::vector<float>>& key_times) const {
+        return load_scene_desc(write(keyed_model(key_times), "keys.glb"));
+    }
+};
+
+TEST_F(GltfFrameRate, KeysEvery39thOfASecondGive39FpsAnd40Frames) {
+    // Both ways an exporter may write float32 times: k / 39 rounded once, or 1/39 summed k times.
+    for (const std::vector<float>& times : {sampled_keys(39, 40, 0).first, summed_key_times(39, 40)}) {
+        const SceneDesc desc = load_keyed({times});
+        EXPECT_EQ(desc.fps, 39);
+        EXPECT_EQ(desc.fps_source, FpsSource::gltf_keys);
+        EXPECT_EQ(describe_fps_source(desc), "from the glTF keys, one every 1/39 s");
+        EXPECT_EQ(desc.frame_count, 40);
+        EXPECT_NEAR(desc.frame_time_s(39), times.back(), 1e-6);  // the last frame shows the last key
+    }
+}
+
+TEST_F(GltfFrameRate, KeysEvery59thOfASecondGive59FpsAnd60Frames) {
+    // Keys from 0, and Blender's frames 1-59 (frame f at f / 59 s): both end at 1 s.
+    for (const auto& [count, start_s] : {std::pair{60, 0.0f}, std::pair{59, 1 / 59.0f}}) {
+        const SceneDesc desc = load_keyed({sampled_keys(59, count, start_s).first});
+        EXPECT_EQ(desc.fps, 59);
+        EXPECT_EQ(desc.frame_count, 60);
+    }
+}
+
+TEST_F(GltfFrameRate, KeysAt24And30FpsStillGiveThoseRates) {
+    for (const int fps : {24, 30}) {
+        const SceneDesc desc = load_keyed({sampled_keys(float(fps), 2 * fps + 1, 0).first});  // 2 s
+        EXPECT_EQ(desc.fps, float(fps));
+        EXPECT_EQ(desc.frame_count, 2 * fps + 1);
+    }
+}
+
+TEST_F(GltfFrameRate, NtscKeysGiveTheirRateNotTheWholeOneNextToIt) {
+    const float ntsc_fps = 30000 / 1001.0f;  // 29.97
+    const SceneDesc desc = load_keyed({sampled_keys(ntsc_fps, 61, 0).first});
+    EXPECT_NEAR(desc.fps, ntsc_fps, 1e-4f);
+    EXPECT_EQ(desc.frame_count, 61);
+    EXPECT_EQ(describe_fps_source(desc), "from the glTF keys, one every 1/29.97 s");
+}
+
+TEST_F(GltfFrameRate, FloatKeysSummedForFiveMinutesAt240FpsStayEven) {
+    // Late intervals are off by up to 0.3% of the spacing: float32 rounding at 300 s.
+    EXPECT_EQ(load_keyed({summed_key_times(240, 5 * 60 * 240 + 1)}).fps, 240);
+}
+
+TEST_F(GltfFrameRate, UnevenKeysKeepTheDefaultRate) {
+    std::vector<float> jittered = sampled_keys(30, 31, 0).first;
+    jittered[15] += 0.005f / 30;  // half a percent of the spacing
+    for (const std::vector<float>& times : {std::vector<float>{0, 0.04f, 0.09f, 0.125f}, jittered}) {
+        const SceneDesc desc = load_keyed({times});
+        EXPECT_EQ(desc.fps, 24);
+        EXPECT_EQ(desc.fps_source, FpsSource::default_rate);
+    }
+}
+
+TEST_F(GltfFrameRate, SamplersWithDifferentSpacingsKeepTheDefaultRate) {
+    for (const float other_fps : {25.0f, 30.5f}) {
+        const SceneDesc desc = load_keyed({sampled_keys(30, 31, 0).first, sampled_keys(other_fps, 20, 0).first});
+        EXPECT_EQ(desc.fps, 24);
+        EXPECT_EQ(desc.fps_source, FpsSource::default_rate);
+        EXPECT_EQ(desc.frame_count, 25);  // 1 s at 24 fps
+    }
+}
+
+TEST_F(GltfFrameRate, SamplersWithTwoKeysDoNotDecideTheRate) {
+    // Two keys are any two moments; only the sampled channel speaks of a rate.
+    const SceneDesc desc = load_keyed({{0, 0.77f}, sampled_keys(39, 40, 0).first, {0.1f, 0.35f}});
+    EXPECT_EQ(desc.fps, 39);
+    EXPECT_EQ(desc.frame_count, 40);
+}
+
+TEST_F(GltfFrameRate, RatesOutside10To240FpsKeepTheDefault) {
+    for (const float fps : {1.0f, 5.0f, 9.9f, 250.0f, 480.0f}) {
+        const SceneDesc desc = load_keyed({sampled_keys(fps, 5, 0).first});
+        EXPECT_EQ(desc.fps, 24) << fps << " fps";
+        EXPECT_EQ(desc.fps_source, FpsSource::default_rate) << fps << " fps";
+    }
+    for (const float fps : {10.0f, 240.0f}) EXPECT_EQ(load_keyed({sampled_keys(fps, 5, 0).first}).fps, fps);
+}
+
+TEST_F(GltfFrameRate, SceneFileFpsOverridesTheKeyRateAndACountAloneKeepsIt) {
+    write(keyed_model({sampled_keys(39, 40, 0).first}), "keys.glb");
+    const fs::path json = m_dir / "scene.json";
+    std::ofstream(json) << R"({"gltf": "keys.glb", "frames": {"fps": 24}})";
+    const SceneDesc overridden = load_scene_desc(json.string());
+    EXPECT_EQ(overridden.fps, 24);
+    EXPECT_EQ(overridden.fps_source, FpsSource::scene_file);
+    EXPECT_EQ(overridden.frame_count, 25);  // 1 s at 24 fps
+    std::ofstream(json) << R"({"gltf": "keys.glb", "frames": {"count": 10}})";
+    const SceneDesc counted = load_scene_desc(json.string());
+    EXPECT_EQ(counted.fps, 39);
+    EXPECT_EQ(counted.fps_source, FpsSource::gltf_keys);
+    EXPECT_EQ(counted.frame_count, 10);
 }
 
 TEST_F(GltfLoader, GlbWithoutCameraCannotBeAScene) {

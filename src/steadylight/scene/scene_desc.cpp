@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "steadylight/base/error.h"
 #include "steadylight/scene/gltf_loader.h"
 #include "steadylight/scene/json_reader.h"
@@ -283,6 +285,15 @@ void validate(const SceneDesc& desc) {
             throw InputError(file + ": light \"" + light.name + "\"", "position or intensity is not finite");
 }
 
+std::string describe_fps_source(const SceneDesc& desc) {
+    switch (desc.fps_source) {
+    case FpsSource::scene_file: return "from the scene file";
+    case FpsSource::gltf_keys: return fmt::format("from the glTF keys, one every 1/{:.6g} s", desc.fps);
+    case FpsSource::default_rate: break;
+    }
+    return "default";
+}
+
 SceneDesc load_scene_desc(const std::string& path) {
     if (is_gltf_file(path)) return load_gltf_scene_desc(path);
     const nlohmann::json root_json = parse_json_file(path);
@@ -298,6 +309,7 @@ SceneDesc load_scene_desc(const std::string& path) {
 
     if (root.has("frames")) {
         const JsonObject frames = root.object("frames");
+        if (frames.has("fps")) desc.fps_source = FpsSource::scene_file;
         desc.fps = frames.number("fps", desc.fps);
         if (!(desc.fps > 0)) frames.fail("fps", "must be positive");
         desc.frame_count = frames.integer("count", frames_covering(gltf_duration_s, desc.fps));

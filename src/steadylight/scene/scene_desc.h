@@ -73,6 +73,13 @@ struct CameraDesc {
     int height = 240;
 };
 
+/// Where SceneDesc::fps came from, as `steadylight info` says it.
+enum class FpsSource {
+    default_rate,  // nothing set it: 24 fps
+    scene_file,    // "frames": {"fps": ...} in the JSON scene
+    gltf_keys,     // the key spacing of a sampled glTF animation (gltf_animation.h)
+};
+
 struct SceneDesc {
     std::string name;         // used in output file names
     std::string source_file;  // where it was loaded from, for messages
@@ -82,6 +89,7 @@ struct SceneDesc {
     std::vector<PointLightDesc> point_lights;
     int frame_count = 1;
     float fps = 24;
+    FpsSource fps_source = FpsSource::default_rate;
     std::vector<int> segment_starts;  // frames where the scene file starts a new segment (besides 0)
 
     float frame_time_s(int frame) const { return float(frame) / fps; }
@@ -91,6 +99,10 @@ struct SceneDesc {
 /// (docs/gltf.md); relative paths are relative to the file.
 /// Throws InputError naming the file and the JSON pointer of anything wrong.
 SceneDesc load_scene_desc(const std::string& path);
+
+/// Where `desc.fps` came from, for `steadylight info`: "default", "from the scene file" or
+/// "from the glTF keys, one every 1/39 s".
+std::string describe_fps_source(const SceneDesc& desc);
 
 /// Checks what no single loader can: indices in range, finite numbers, emitters with area.
 void validate(const SceneDesc& desc);

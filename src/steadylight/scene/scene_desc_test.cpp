@@ -72,6 +72,13 @@ TEST(SceneDesc, BallMatchesItsSpec) {
     }
 }
 
+TEST(SceneDesc, FpsSourceSaysWhereTheRateCameFrom) {
+    EXPECT_EQ(describe_fps_source(SceneDesc{}), "default");
+    const SceneDesc ball = load_scene_desc(scenes_dir + "ball.json");
+    EXPECT_EQ(ball.fps_source, FpsSource::scene_file);
+    EXPECT_EQ(describe_fps_source(ball), "from the scene file");
+}
+
 TEST(SceneDesc, CameraRightIsWorldMinusXInBall) {
     const Scene scene(load_scene_desc(scenes_dir + "ball.json"));
     const Camera camera = scene.evaluate(0).camera;
