@@ -12,6 +12,7 @@
 
 #include "steadylight/base/image.h"
 #include "steadylight/base/rng.h"
+#include "steadylight/passes/frame_stats.h"
 #include "steadylight/shading/frame_context.h"
 
 namespace steadylight {
@@ -30,10 +31,25 @@ void validate(const PathTracerSettings& settings, const std::string& where);
 /// Called after each finished tile with (tiles done, tiles in all); may be called concurrently.
 using TileProgress = std::function<void(int, int)>;
 
-Image render_path_traced(const FrameContext& context, const PathTracerSettings& settings,
-                         const TileProgress& progress = {});
+/// A path-traced frame: the image, and its time, camera samples, rays and path vertices.
+struct PathFrame {
+    Image beauty;
+    FrameStats stats;
+};
 
-/// Radiance arriving along `ray` (from its far end towards its origin).
-Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings);
+PathFrame render_path_traced(const FrameContext& context, const PathTracerSettings& settings,
+                             const TileProgress& progress = {});
+
+/// What tracing paths cost: rays traced (closest hits and shadow rays) and path vertices (the
+/// surface hits; mean path length = vertices / camera samples). Counting changes no pixel.
+struct PathCounts {
+    long rays = 0;
+    long vertices = 0;
+};
+
+/// Radiance arriving along `ray` (from its far end towards its origin); adds its rays and
+/// vertices to `counts`.
+Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings,
+               PathCounts& counts);
 
 }  // namespace steadylight

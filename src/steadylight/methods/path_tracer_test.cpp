@@ -13,8 +13,12 @@ using testing::add_material;
 using testing::add_object;
 using testing::make_empty_scene;
 
-Image render(const Scene& scene, int frame, const PathTracerSettings& settings) {
+PathFrame render_frame(const Scene& scene, int frame, const PathTracerSettings& settings) {
     return render_path_traced(PreparedFrame(scene, frame).context(), settings);
+}
+
+Image render(const Scene& scene, int frame, const PathTracerSettings& settings) {
+    return render_frame(scene, frame, settings).beauty;
 }
 
 Rgb mean(const Image& image) {
@@ -83,6 +87,46 @@ TEST(PathTracer, SameFrameTwiceIsBitIdentical) {
     const Image a = render(scene, 3, {.samples_per_pixel = 2});
     const Image b = render(scene, 3, {.samples_per_pixel = 2});
     EXPECT_TRUE(a.pixels == b.pixels);
+}
+
+/// With no objects each camera sample is one ray that meets nothing; inside a closed sphere,
+/// with no bounce allowed, one ray and one vertex; shadow rays count as rays, not vertices.
+TEST(PathTracer, StatisticsCountCameraSamplesRaysAndVertices) {
+    const PathTracerSettings no_bounce{.samples_per_pixel = 3, .max_depth = 0};
+    const FrameStats empty = render_frame(Scene(make_empty_scene({0, 0, 0}, {0, 0, -1}, 5, 4)), 0, no_bounce).stats;
+    EXPECT_EQ(empty.camera_samples, 5 * 4 * 3);
+    EXPECT_EQ(empty.path_rays, 5 * 4 * 3);
+    EXPECT_EQ(empty.path_vertices, 0);
+
+    SceneDesc desc = make_empty_scene({0, 0, 0}, {0, 0, -1}, 5, 4, 90);
+    add_object(desc, Sphere{{0, 0, 0}, 1}, add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}}), {1, 1, 1});
+    desc.objects[0].two_sided_emission = true;
+    const Scene sphere(std::move(desc));
+    const FrameStats inside = render_frame(sphere, 0, no_bounce).stats;
+    EXPECT_EQ(inside.path_rays, 5 * 4 * 3);
+    EXPECT_EQ(inside.path_vertices, 5 * 4 * 3);
+    // One bounce: a second vertex for every sample, and at the first a shadow ray towards a
+    // point sampled on the sphere (the one light), unless that sample has no contribution.
+    const FrameStats bounced = render_frame(sphere, 0, {.samples_per_pixel = 3, .max_depth = 1}).stats;
+    EXPECT_EQ(bounced.path_vertices, 2 * 5 * 4 * 3);
+    EXPECT_GT(bounced.path_rays, bounced.path_vertices);
+    EXPECT_LE(bounced.path_rays, 3 * 5 * 4 * 3);
+}
+
+TEST(PathTracer, StatisticsAreTheSameForOneAndTwoThreads) {
+    Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/ball.json"));
+    scene.set_resolution(40, 30);
+    const PathTracerSettings settings{.samples_per_pixel = 4};
+    FrameStats one, two;
+    tbb::task_arena(1).execute([&] { one = render_frame(scene, 7, settings).stats; });
+    tbb::task_arena(2).execute([&] { two = render_frame(scene, 7, settings).stats; });
+    EXPECT_EQ(one.frame, 7);
+    EXPECT_EQ(one.camera_samples, 40 * 30 * 4);
+    EXPECT_GT(one.path_vertices, one.camera_samples);  // the room is closed but for the camera's side
+    EXPECT_GT(one.path_rays, one.path_vertices);       // shadow rays
+    EXPECT_GT(one.total_s, 0);
+    EXPECT_EQ(one.path_rays, two.path_rays);
+    EXPECT_EQ(one.path_vertices, two.path_vertices);
 }
 
 }  // namespace
