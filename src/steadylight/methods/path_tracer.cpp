@@ -14,6 +14,35 @@ namespace {
 
 constexpr int tile_size = 16;
 
+// Fixed-seed streams hash this where the default streams hash the frame number, which stays
+// far below it: the two kinds of stream are seeded from different words.
+constexpr uint64_t fixed_seed_streams = uint64_t(1) << 63;
+
+/// The random streams of one pixel. By default one stream, seeded from (frame, pixel), draws the
+/// pixel's stratification shift and then the numbers of every camera sample in turn. With
+/// `fixed_seed` the shift and each camera sample have a stream of their own, seeded from (pixel,
+/// sample) and not from the frame: a path that meets a moving object changes its own sample's
+/// numbers only, and every other sample of the pixel repeats the previous frame's path exactly.
+class PixelStreams {
+public:
+    PixelStreams(const PathTracerSettings& settings, int frame, uint64_t pixel)
+        : m_fixed(settings.fixed_seed), m_pixel(pixel), m_seed(settings.seed),
+          m_rng(m_fixed ? hash_ids(fixed_seed_streams, pixel, m_seed) : hash_ids(uint64_t(frame), pixel, m_seed)) {}
+
+    /// The stream of the pixel's stratification shift, drawn before any sample.
+    Pcg32& shift() { return m_rng; }
+    /// The stream of camera sample `sample`; call it for the samples in order 0, 1, ...
+    Pcg32& sample(int sample) {
+        if (m_fixed) m_rng = Pcg32(hash_ids(fixed_seed_streams, m_pixel, m_seed, uint64_t(sample) + 1));
+        return m_rng;
+    }
+
+private:
+    bool m_fixed;
+    uint64_t m_pixel, m_seed;
+    Pcg32 m_rng;
+};
+
 /// Direct light from one sampled light, weighted against BSDF sampling by MIS.
 Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const Frame& frame,
                     const Bsdf& bsdf, Vec3 wo, Pcg32& rng, PathCounts& counts) {
@@ -32,13 +61,13 @@ Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const F
 /// The mean radiance of pixel (x, y) over its stratified camera samples.
 Rgb estimate_pixel(const FrameContext& context, const PathTracerSettings& settings, int x, int y, PathCounts& counts) {
     const Camera& camera = context.frame.camera;
-    Pcg32 rng(hash_ids(uint64_t(context.frame.frame), uint64_t(y) * uint64_t(camera.width) + uint64_t(x), settings.seed));
+    PixelStreams streams(settings, context.frame.frame, uint64_t(y) * uint64_t(camera.width) + uint64_t(x));
     Rgb sum;
-    const Vec2 shift = rng.next_vec2();
+    const Vec2 shift = streams.shift().next_vec2();
     for (int s = 0; s < settings.samples_per_pixel; ++s) {
         const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(settings.samples_per_pixel), shift);
         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-        const Rgb L = trace_path(context, ray, rng, settings, counts);
+        const Rgb L = trace_path(context, ray, streams.sample(s), settings, counts);
         // A NaN or infinity from a degenerate path is dropped, not smeared over the frame.
         if (is_finite(L)) sum += L;
     }

@@ -2,7 +2,10 @@
 // sampling (power heuristic) between BSDF and light sampling for area lights, and Russian
 // roulette (Veach 1997; pbrt-v4 PathIntegrator). It is the ground truth the photon-mapping
 // methods are checked against. Deterministic: each pixel's random stream is seeded from
-// (frame, pixel), so the image does not depend on the thread count.
+// (frame, pixel), so the image does not depend on the thread count. With `fixed_seed` each
+// camera sample of a pixel has a stream of its own, seeded from (pixel, sample) and the same in
+// every frame: where no path meets a moving object two frames are bit-identical, and elsewhere
+// their difference is an unbiased estimate of the true change.
 #pragma once
 
 #include <functional>
@@ -22,9 +25,10 @@ struct PathTracerSettings {
     int max_depth = 64;           // bounces; Russian roulette usually ends paths much earlier
     int roulette_start_depth = 3; // bounces before Russian roulette may end a path
     uint64_t seed = 0;            // another seed gives independent noise (for reference images)
+    bool fixed_seed = false;      // the same random numbers per (pixel, camera sample) in every frame
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PathTracerSettings, samples_per_pixel, max_depth,
-                                                roulette_start_depth, seed)
+                                                roulette_start_depth, seed, fixed_seed)
 /// Throws InputError naming `where` + "/<field>" for a value out of range.
 void validate(const PathTracerSettings& settings, const std::string& where);
 
