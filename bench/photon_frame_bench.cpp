@@ -35,7 +35,7 @@ Image reference_image(const PreparedFrame& ball, const std::string& path) {
     if (std::filesystem::exists(path)) return read_exr(path);
     std::printf("rendering the reference (path tracer, 2048 spp) into %s ...\n", path.c_str());
     const Stopwatch time;
-    const Image reference = render_path_traced(ball.context(), {.samples_per_pixel = 2048, .seed = 0x7e7e});
+    const Image reference = render_path_traced(ball.context(), {.samples_per_pixel = 2048, .seed = 0x7e7e}).beauty;
     std::printf("  %.1f s\n", time.elapsed_s());
     write_exr(path, reference);
     return reference;
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     double path_time_at_photon_error = -1;
     for (int spp = 4; spp <= 1024; spp *= 2) {
         const Stopwatch time;
-        const Image image = render_path_traced(ball.context(), {.samples_per_pixel = spp});
+        const Image image = render_path_traced(ball.context(), {.samples_per_pixel = spp}).beauty;
         const double seconds = time.elapsed_s(), rmse = relative_rmse(image, reference);
         std::printf("%8d %10.3f %10.4f\n", spp, seconds, rmse);
         if (rmse <= photon_rmse) {

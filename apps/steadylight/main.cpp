@@ -155,6 +155,9 @@ int main(int argc, char** argv) {
         ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
     render->add_option("--max-depth", settings.path.max_depth, "path: maximum path length in bounces")
         ->capture_default_str()->check(CLI::Range(0, 10000));
+    render->add_flag("--fixed-seed", settings.path.fixed_seed,
+                     "path: the same random numbers per pixel and camera sample in every frame, so frames "
+                     "differ only where paths meet what moved");
     render->add_flag("!--no-progress", settings.show_progress, "No progress output");
     render->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
     add_output_options(render, settings, raw);

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Renders three tiny BALL frames with the localized method, writes `steadylight report` for
 # them and checks the page: every frame in the contact sheet, plots with a point per frame, the
-# summary table, the AOV layers, nothing fetched from the network; then --frame, --out and bad
-# input. The page it leaves in OUT/report.html is what cli.report_chromium opens.
+# summary table, the AOV layers, nothing fetched from the network; then --frame, --out, a
+# report on path-traced frames and bad input. The page it leaves in OUT/report.html is what
+# cli.report_chromium opens.
 set -euo pipefail
 binary=$1 source=$2 out=$3
 
@@ -32,6 +33,16 @@ points=$(grep -o 'points="[^"]*"' "$html" | awk -F, '{ print NF - 1 }' | sort -u
 
 "$binary" report "$out" --frame 2 --out "$out/frame2.html"
 has "ball, frame 2</h3>" "$out/frame2.html"
+
+# Path-traced frames have statistics too: the time per frame is plotted, a point per frame.
+"$binary" render "$source/scenes/ball.json" --method path --frames 0-1 --spp 1 --size 16x12 --no-progress --out "$out/path"
+"$binary" report "$out/path"
+path_html=$out/path/report.html
+has '<th>path</th>' "$path_html"
+has '<th>camera samples (path)</th><td>192.0</td>' "$path_html"
+! grep -qF 'No frame statistics' "$path_html" || fail "no statistics for the path frames"
+grep -o '<polyline[^>]*data-series="path"[^>]*points="[^"]*"' "$path_html" | head -1 | grep -qE 'points="[^ ]+ [^ ]+"' \
+  || fail "no time plot with two points for the path frames"
 
 # Bad input: a clear message naming what is wrong, exit status 1.
 expect_error() {  # expect_error REGEX ARGS...

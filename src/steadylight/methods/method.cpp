@@ -40,6 +40,8 @@ const std::vector<LayerOf<LocalizedFrame>> localized_layers = {
     {"dynamic_records", &LocalizedFrame::dynamic_records, true},
 };
 
+const std::vector<LayerOf<PathFrame>> path_layers = {};  // the beauty only
+
 template <class Frame>
 std::vector<std::string_view> names_of(const std::vector<LayerOf<Frame>>& layers) {
     std::vector<std::string_view> names;
@@ -72,7 +74,7 @@ RenderedFrame render_photon(const FrameContext& context, const StaticSolution*, 
 }
 
 RenderedFrame render_path(const FrameContext& context, const StaticSolution*, const MethodSettings& settings) {
-    return {render_path_traced(context, settings.path), {}, std::nullopt};
+    return rendered(Method::path, render_path_traced(context, settings.path), path_layers);
 }
 
 }  // namespace
@@ -85,7 +87,8 @@ const std::vector<MethodInfo>& methods() {
          names_of(photon_layers), render_photon},
         {Method::frozen, "frozen", "static cache reused as it is", true, false, {.photon = true},
          names_of(localized_layers), render_frozen},
-        {Method::path, "path", "path-traced ground truth", false, false, {.path = true}, {}, render_path},
+        {Method::path, "path", "path-traced ground truth", false, false, {.path = true}, names_of(path_layers),
+         render_path},
     };
     return table;
 }

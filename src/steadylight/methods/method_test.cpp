@@ -86,10 +86,10 @@ TEST(Methods, FramesHaveTheTablesLayersAndStatistics) {
             for (const Rgb& p : layer.image.pixels) ASSERT_TRUE(is_finite(p) && max_component(p) <= 1000) << layer.name;
         }
         EXPECT_EQ(names, info.layers) << info.name;
-        ASSERT_EQ(rendered.stats.has_value(), info.method != Method::path) << info.name;
-        if (rendered.stats) {
-            EXPECT_EQ(rendered.stats->method, info.name);
-        }
+        // Every method has statistics, the path tracer too (time, samples, rays).
+        ASSERT_TRUE(rendered.stats.has_value()) << info.name;
+        EXPECT_EQ(rendered.stats->method, info.name);
+        EXPECT_GT(rendered.stats->total_s, 0) << info.name;
     }
 }
 

@@ -2,7 +2,10 @@
 // sampling (power heuristic) between BSDF and light sampling for area lights, and Russian
 // roulette (Veach 1997; pbrt-v4 PathIntegrator). It is the ground truth the photon-mapping
 // methods are checked against. Deterministic: each pixel's random stream is seeded from
-// (frame, pixel), so the image does not depend on the thread count.
+// (frame, pixel), so the image does not depend on the thread count. With `fixed_seed` each
+// camera sample of a pixel has a stream of its own, seeded from (pixel, sample) and the same in
+// every frame: where no path meets a moving object two frames are bit-identical, and elsewhere
+// their difference is an unbiased estimate of the true change.
 #pragma once
 
 #include <functional>
@@ -12,6 +15,7 @@
 
 #include "steadylight/base/image.h"
 #include "steadylight/base/rng.h"
+#include "steadylight/passes/frame_stats.h"
 #include "steadylight/shading/frame_context.h"
 
 namespace steadylight {
@@ -21,19 +25,35 @@ struct PathTracerSettings {
     int max_depth = 64;           // bounces; Russian roulette usually ends paths much earlier
     int roulette_start_depth = 3; // bounces before Russian roulette may end a path
     uint64_t seed = 0;            // another seed gives independent noise (for reference images)
+    bool fixed_seed = false;      // the same random numbers per (pixel, camera sample) in every frame
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PathTracerSettings, samples_per_pixel, max_depth,
-                                                roulette_start_depth, seed)
+                                                roulette_start_depth, seed, fixed_seed)
 /// Throws InputError naming `where` + "/<field>" for a value out of range.
 void validate(const PathTracerSettings& settings, const std::string& where);
 
 /// Called after each finished tile with (tiles done, tiles in all); may be called concurrently.
 using TileProgress = std::function<void(int, int)>;
 
-Image render_path_traced(const FrameContext& context, const PathTracerSettings& settings,
-                         const TileProgress& progress = {});
+/// A path-traced frame: the image, and its time, camera samples, rays and path vertices.
+struct PathFrame {
+    Image beauty;
+    FrameStats stats;
+};
 
-/// Radiance arriving along `ray` (from its far end towards its origin).
-Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings);
+PathFrame render_path_traced(const FrameContext& context, const PathTracerSettings& settings,
+                             const TileProgress& progress = {});
+
+/// What tracing paths cost: rays traced (closest hits and shadow rays) and path vertices (the
+/// surface hits; mean path length = vertices / camera samples). Counting changes no pixel.
+struct PathCounts {
+    long rays = 0;
+    long vertices = 0;
+};
+
+/// Radiance arriving along `ray` (from its far end towards its origin); adds its rays and
+/// vertices to `counts`.
+Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings,
+               PathCounts& counts);
 
 }  // namespace steadylight

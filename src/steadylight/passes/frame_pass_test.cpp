@@ -16,6 +16,7 @@ namespace {
 using testing::add_material;
 using testing::add_object;
 using testing::make_empty_scene;
+using testing::two_rooms_one_moving_ball;
 
 const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 
@@ -85,28 +86,8 @@ TEST(Localized, AgreesWithPhotonMappingOnBall) {
     EXPECT_LT(localized.stats.irradiance_records * 3, photon.stats.irradiance_records);
 }
 
-/// Two lit rooms side by side, [0,3.4] and [4.6,8] in x, open towards the camera at z = 0, with
-/// a ball moving in the first only: no photon passes from one room to the other, and the wall
-/// between them is thicker than the density estimates' radius (0.5), so no estimate reaches across.
-Scene two_rooms_one_moving_ball() {
-    SceneDesc desc = make_empty_scene({4, 1.5f, -6}, {4, 1.5f, 0}, 48, 24, 40);
-    desc.frame_count = 2;
-    const int white = add_material(desc, {.reflectance = {0.7f, 0.7f, 0.7f}});
-    add_object(desc, make_quad({0, 0, 0}, {0, 0, 4}, {8, 0, 0}), white);  // floor
-    add_object(desc, make_quad({0, 3, 0}, {8, 0, 0}, {0, 0, 4}), white);  // ceiling
-    add_object(desc, make_quad({0, 0, 4}, {0, 3, 0}, {8, 0, 0}), white);  // back
-    add_object(desc, make_quad({0, 0, 0}, {0, 3, 0}, {0, 0, 4}), white);  // left
-    add_object(desc, make_quad({8, 0, 0}, {0, 0, 4}, {0, 3, 0}), white);  // right
-    add_object(desc, make_box({4, 1.5f, 2}, {1.2f, 3, 4}), white);        // partition
-    for (const float x : {1.75f, 5.75f})
-        add_object(desc, make_quad({x, 2.95f, 1.75f}, {0.5f, 0, 0}, {0, 0, 0.5f}), white, {30, 30, 30});
-    add_object(desc, Sphere{{0, 0, 0}, 0.4f}, white);
-    desc.objects.back().placement[0].translation_track = Track<Vec3>{Interpolation::linear, {0, 1}, {{1.5f, 0.4f, 2}, {2.5f, 0.4f, 2}}};
-    return Scene(std::move(desc));
-}
-
 TEST(Localized, StaticRegionsAreBitIdenticalBetweenFrames) {
-    const std::vector<LocalizedFrame> frames = render(two_rooms_one_moving_ball(), {0, 1});
+    const std::vector<LocalizedFrame> frames = render(Scene(two_rooms_one_moving_ball()), {0, 1});
     const Image& a = frames[0].beauty;
     const Image& b = frames[1].beauty;
     // The room without the ball (the left half of the image: the camera's right is -x) is

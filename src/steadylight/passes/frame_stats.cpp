@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <type_traits>
+
 namespace steadylight {
 
 namespace {
@@ -31,24 +33,62 @@ void for_each_json_field(Stats& s, Visit&& visit) {
     visit("/seconds/total", s.total_s);
 }
 
-}  // namespace
-
-void to_json(nlohmann::json& json, const FrameStats& s) {
-    json = nlohmann::json::object();
-    for_each_json_field(s, [&](const char* pointer, const auto& value) { json[nlohmann::json::json_pointer(pointer)] = value; });
+/// The fields added after the first statistics files were written: a file may lack them (an
+/// older run's, which `steadylight report` still reads), and they then read as zero.
+template <typename Stats, typename Visit>
+void for_each_later_json_field(Stats& s, Visit&& visit) {
+    visit("/path/camera_samples", s.camera_samples);
+    visit("/path/rays", s.path_rays);
+    visit("/path/vertices", s.path_vertices);
 }
 
-void from_json(const nlohmann::json& json, FrameStats& s) {
-    for_each_json_field(s, [&](const char* pointer, auto& value) { json.at(nlohmann::json::json_pointer(pointer)).get_to(value); });
+/// Whether the frame ran photon-mapping passes: photons, records, gathers or their phases' time.
+bool has_photon_mapping_figures(const FrameStats& s) {
+    return s.global_photons_emitted > 0 || s.caustic_photons_emitted > 0 || s.irradiance_records > 0 ||
+           s.static_records > 0 || s.gather_rays > 0 || s.photon_tracing_s > 0 || s.cache_s > 0 || s.direct_s > 0;
 }
 
-std::string summarize(const FrameStats& s) {
+std::string summarize_photon_mapping(const FrameStats& s) {
     std::string text = fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M | photons {:.2f} s, cache {:.2f} s, ",
                                    s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
                                    double(s.gather_rays) / 1e6, s.photon_tracing_s, s.cache_s);
     if (s.influence_s > 0 || s.correction_s > 0)  // the localized method's own phases
         text += fmt::format("influence {:.2f} s, L_t {:.2f} s, ", s.influence_s, s.correction_s);
     return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.direct_s, s.caustics_s);
+}
+
+/// The path tracer's figures; `s.camera_samples` > 0.
+std::string summarize_paths(const FrameStats& s) {
+    const double samples = double(s.camera_samples);
+    return fmt::format("camera samples {:.2f}M, rays {:.2f}M ({:.2f} a sample), path length {:.2f} vertices", samples / 1e6,
+                       double(s.path_rays) / 1e6, double(s.path_rays) / samples, double(s.path_vertices) / samples);
+}
+
+}  // namespace
+
+void to_json(nlohmann::json& json, const FrameStats& s) {
+    json = nlohmann::json::object();
+    const auto write = [&](const char* pointer, const auto& value) { json[nlohmann::json::json_pointer(pointer)] = value; };
+    for_each_json_field(s, write);
+    for_each_later_json_field(s, write);
+}
+
+void from_json(const nlohmann::json& json, FrameStats& s) {
+    for_each_json_field(s, [&](const char* pointer, auto& value) { json.at(nlohmann::json::json_pointer(pointer)).get_to(value); });
+    for_each_later_json_field(s, [&](const char* pointer, auto& value) {
+        using Value = std::decay_t<decltype(value)>;
+        const nlohmann::json::json_pointer at(pointer);
+        value = json.contains(at) ? json.at(at).get<Value>() : Value{};
+    });
+}
+
+std::string summarize(const FrameStats& s) {
+    // Each group of figures only where the frame has some; a frame without any still gets the
+    // photon-mapping line, as every frame did before the path tracer had statistics.
+    const bool paths = s.camera_samples > 0;
+    std::string text = has_photon_mapping_figures(s) || !paths ? summarize_photon_mapping(s) : "";
+    if (paths) text += (text.empty() ? "" : " | ") + summarize_paths(s);
+    return text;
 }
 
 }  // namespace steadylight

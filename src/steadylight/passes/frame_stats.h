@@ -1,6 +1,7 @@
 // Statistics of one rendered frame: counts and wall time per phase, printed after each frame
 // and written beside it as JSON (`<scene>_<frame:04>.stats.json`), which `steadylight report`
-// reads back. The passes fill them; timed_phase() is how a pass times one of its phases.
+// reads back. The passes and the path tracer fill them; a method leaves the figures it has no
+// part in at zero. timed_phase() is how a pass times one of its phases.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -33,14 +34,19 @@ struct FrameStats {
     double direct_s = 0;              // shading pass: direct light, cache look-ups, specular
     double caustics_s = 0;            // caustic estimates (inside the shading pass, summed over threads)
     double total_s = 0;
+    long camera_samples = 0;          // path: pixels x samples per pixel
+    long path_rays = 0;               // path: rays traced, closest-hit and shadow rays
+    long path_vertices = 0;           // path: surface hits along the paths (per camera sample: path length)
 };
 
 void to_json(nlohmann::json& json, const FrameStats& stats);
 /// Reads what to_json wrote (`steadylight report`); throws nlohmann::json::exception when a field
-/// is missing or has the wrong type.
+/// is missing or has the wrong type. The path tracer's figures came later: a file without them
+/// (an older run's) reads them as zero.
 void from_json(const nlohmann::json& json, FrameStats& stats);
 
-/// One line for the console: the phases and counts of the frame.
+/// One line for the console: the phases and counts of the frame, each group only when the frame
+/// has figures in it (the path tracer's, the photon-mapping passes').
 std::string summarize(const FrameStats& stats);
 
 /// Runs `work()` as the frame's phase `name`: a checkpoint (progress, Ctrl-C; base/checkpoint.h),

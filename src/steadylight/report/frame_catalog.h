@@ -16,7 +16,7 @@ struct CatalogFrame {
     std::string scene;
     int frame = 0;
     std::string exr_file, png_file, stats_file;
-    std::optional<FrameStats> stats;  // absent for the path tracer, which writes no statistics
+    std::optional<FrameStats> stats;  // absent without a stats.json (path frames of older runs)
 
     /// The method named by the statistics, or "" when there are none.
     std::string method() const { return stats ? stats->method : ""; }

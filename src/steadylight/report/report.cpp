@@ -72,7 +72,7 @@ std::string phase_plot(const StatsSeries& series, bool several_scenes) {
 }
 
 std::string plots_html(const std::vector<StatsSeries>& all) {
-    if (all.empty()) return "<p>No frame statistics (the path tracer writes none).</p>\n";
+    if (all.empty()) return "<p>No frame statistics (no stats.json beside the frames).</p>\n";
     const bool several_scenes = all.front().scene != all.back().scene;
     const StatsField& total = phase_time_fields().back();
     const StatsField& records = count_fields().front();

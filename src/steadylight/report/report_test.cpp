@@ -33,6 +33,13 @@ FrameStats fake_stats(const std::string& method, int frame) {
     FrameStats stats;
     stats.method = method;
     stats.frame = frame;
+    if (method == "path") {  // the path tracer's figures only: no photons, records or phases
+        stats.camera_samples = 4 * 3 * 16;
+        stats.path_rays = 1000 + 10 * frame;
+        stats.path_vertices = 384;
+        stats.total_s = 0.5;
+        return stats;
+    }
     stats.irradiance_records = method == "photon" ? 5000 + frame : 150 + 10 * frame;
     stats.photon_tracing_s = 1.0;
     stats.cache_s = method == "photon" ? 1.5 : 0.05;
@@ -70,6 +77,20 @@ std::vector<size_t> polyline_sizes(const std::string& html) {
 
 std::string report_of(const std::string& dir, std::optional<int> frame = std::nullopt) {
     return build_report_html({dir, frame, ""});
+}
+
+/// Frames [first, end) of BALL rendered with `method`.
+struct FakeRun {
+    std::string method;
+    int first, end;
+};
+
+/// The report on a fresh folder `name` that holds the frames of `runs`.
+std::string report_of_runs(const std::string& name, const std::vector<FakeRun>& runs) {
+    const std::string dir = fresh_folder(name);
+    for (const FakeRun& run : runs)
+        for (int frame = run.first; frame < run.end; ++frame) write_fake_frame(dir, "ball", run.method, frame);
+    return report_of(dir);
 }
 
 /// The message of the InputError that reporting on `dir` throws, or "" when it throws none.
@@ -117,10 +138,7 @@ TEST(Report, ListsEveryFrameInTheContactSheet) {
 }
 
 TEST(Report, PlotsHaveOnePointPerFrameForEachMethod) {
-    const std::string dir = fresh_folder("methods");
-    for (int frame = 0; frame < 4; ++frame) write_fake_frame(dir, "ball", "photon", frame);
-    for (int frame = 4; frame < 10; ++frame) write_fake_frame(dir, "ball", "localized", frame);
-    const std::string html = report_of(dir);
+    const std::string html = report_of_runs("methods", {{"photon", 0, 4}, {"localized", 4, 10}});
     const std::vector<size_t> sizes = polyline_sizes(html);
     // time per frame and records: photon then localized; then the phases of each method.
     ASSERT_GE(sizes.size(), 4u);
@@ -133,10 +151,7 @@ TEST(Report, PlotsHaveOnePointPerFrameForEachMethod) {
 }
 
 TEST(Report, TablesNameEachMethodAndCompareWithPhoton) {
-    const std::string dir = fresh_folder("tables");
-    for (int frame = 0; frame < 2; ++frame) write_fake_frame(dir, "ball", "photon", frame);
-    for (int frame = 2; frame < 4; ++frame) write_fake_frame(dir, "ball", "localized", frame);
-    const std::string html = report_of(dir);
+    const std::string html = report_of_runs("tables", {{"photon", 0, 2}, {"localized", 2, 4}});
     EXPECT_NE(html.find("<th>photon</th><th>localized</th><th>photon / localized</th>"), std::string::npos);
     // Records: photon 5000.5, localized 175 a frame.
     EXPECT_NE(html.find("<th>irradiance records computed</th><td>5000.5</td><td>175.0</td><td>28.57x</td>"),
@@ -199,6 +214,38 @@ TEST(Report, FramesWithoutStatisticsAreShownButNotPlotted) {
     EXPECT_EQ(count(html, "<figure class=\"frame\""), 1u);
     EXPECT_TRUE(polyline_sizes(html).empty());
     EXPECT_NE(html.find("No frame statistics"), std::string::npos);
+}
+
+TEST(Report, PathFramesArePlottedAndComparedWithPhoton) {
+    const std::string html = report_of_runs("path_stats", {{"photon", 0, 2}, {"path", 2, 5}});
+    EXPECT_EQ(html.find("No frame statistics"), std::string::npos);
+    // The time per frame: a line per method, the path tracer's with a point per frame.
+    const std::vector<size_t> sizes = polyline_sizes(html);
+    ASSERT_GE(sizes.size(), 2u);
+    EXPECT_EQ(sizes[0], 2u);
+    EXPECT_EQ(sizes[1], 3u);
+    EXPECT_NE(html.find("data-series=\"path\""), std::string::npos);
+    EXPECT_NE(html.find("time per phase: path"), std::string::npos);
+    // The table: the path tracer's figures, and photon figures it lacks shown as 0.
+    EXPECT_NE(html.find("<th>photon</th><th>path</th><th>photon / path</th>"), std::string::npos);
+    EXPECT_NE(html.find("<th>total (s)</th><td>3.700</td><td>0.500</td><td>7.40x</td>"), std::string::npos);
+    EXPECT_NE(html.find("<th>irradiance records computed</th><td>5000.5</td><td>0</td><td>&mdash;</td>"), std::string::npos);
+    EXPECT_NE(html.find("<th>camera samples (path)</th><td>0</td><td>192.0</td><td>&mdash;</td>"), std::string::npos);
+    EXPECT_NE(html.find("<th>rays traced (path)</th><td>0</td><td>1030.0</td>"), std::string::npos);
+    EXPECT_NE(html.find("<th>path length (vertices a sample)</th><td>0</td><td>2.000</td>"), std::string::npos);
+    EXPECT_NE(html.find("path &middot; 0.50 s"), std::string::npos);  // the contact sheet's caption
+}
+
+TEST(Report, StatisticsWithoutPathFiguresFromOlderRunsStillRead) {
+    const std::string dir = fresh_folder("older_stats");
+    write_fake_frame(dir, "ball", "localized", 0);
+    nlohmann::json older = fake_stats("localized", 0);
+    older.erase("path");
+    write_text_file(frame_file_name(dir, "ball", 0, "stats.json"), older.dump(2));
+    std::string html;
+    ASSERT_NO_THROW(html = report_of(dir));
+    EXPECT_NE(html.find("<th>localized</th>"), std::string::npos);
+    EXPECT_NE(html.find("<th>camera samples (path)</th><td>0</td>"), std::string::npos);
 }
 
 TEST(Report, CorruptStatisticsNameTheFile) {

@@ -30,7 +30,8 @@ struct StatsField {
 /// The wall time of each phase and the total, in seconds (caustics is cpu time summed over
 /// threads, already inside shading).
 const std::vector<StatsField>& phase_time_fields();
-/// Counts: records computed, static records, gather rays, photons stored, fallback gathers.
+/// Counts: records computed, static records, gather rays, photons stored, fallback gathers; the
+/// path tracer's camera samples, rays traced and mean path length.
 const std::vector<StatsField>& count_fields();
 
 /// Mean of `field` over the frames of `series`.

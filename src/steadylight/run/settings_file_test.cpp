@@ -56,6 +56,13 @@ TEST(SettingsJson, MethodSettingsRoundTrip) {
     EXPECT_EQ(nlohmann::json(nlohmann::json(localized).get<LocalizedSettings>()), nlohmann::json(localized));
     PathTracerSettings path{.samples_per_pixel = 3, .seed = 9};
     EXPECT_EQ(nlohmann::json(path).get<PathTracerSettings>().seed, 9u);
+    path.fixed_seed = true;
+    EXPECT_EQ(nlohmann::json(path)["fixed_seed"], true);
+    EXPECT_TRUE(nlohmann::json(path).get<PathTracerSettings>().fixed_seed);
+    // Settings written before fixed_seed existed read it as false.
+    nlohmann::json older = path;
+    older.erase("fixed_seed");
+    EXPECT_FALSE(older.get<PathTracerSettings>().fixed_seed);
 }
 
 TEST_F(SettingsFile, HoldsTheChosenMethodsSettingsOnly) {
@@ -68,6 +75,11 @@ TEST_F(SettingsFile, HoldsTheChosenMethodsSettingsOnly) {
     m_settings.method = Method::path;
     EXPECT_EQ(json({0})["render"].count("photon"), 0u);
     EXPECT_NE(settings_key(json({0})), settings_key(localized));
+    // --fixed-seed changes the path tracer's images: it is part of the settings key.
+    EXPECT_EQ(json({0})["render"]["path"]["fixed_seed"], false);
+    const std::string key = settings_key(json({0}));
+    m_settings.path.fixed_seed = true;
+    EXPECT_NE(settings_key(json({0})), key);
 }
 
 TEST_F(SettingsFile, SameSettingsResumeAndCollectFrames) {
