@@ -16,7 +16,8 @@ struct SurfacePoint {
 
 SurfacePoint make_surface_point(const Scene& scene, const FrameState& frame, const Ray& ray, const Hit& hit);
 
-/// Radiance that `object` emits from a point with front normal `ng` towards direction `w`.
-Rgb emitted_radiance(const ObjectDesc& object, Vec3 ng, Vec3 w);
+/// Radiance that `object`, emitting `Le` at this frame (FrameState::emission), emits from a
+/// point with front normal `ng` towards direction `w`.
+Rgb emitted_radiance(const ObjectDesc& object, Rgb Le, Vec3 ng, Vec3 w);
 
 }  // namespace steadylight
