@@ -27,7 +27,7 @@ namespace {
 bool has_light(const SceneDesc& desc) {
     return std::any_of(desc.objects.begin(), desc.objects.end(), [](const ObjectDesc& o) { return o.is_emitter(); }) ||
            std::any_of(desc.point_lights.begin(), desc.point_lights.end(), [](const PointLightDesc& light) {
-               return !is_black(light.intensity);
+               return light.intensity_track ? is_ever_lit(*light.intensity_track) : !is_black(light.intensity);
            });
 }
 
@@ -157,6 +157,15 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
     }
 }
 
+/// ": 0-9, 10-19" for a few segments; nothing for one or for many.
+std::string segment_list(const std::vector<Segment>& segments) {
+    constexpr size_t max_listed = 8;
+    if (segments.size() < 2 || segments.size() > max_listed) return "";
+    std::string text;
+    for (const Segment& segment : segments) text += fmt::format("{} {}-{}", text.empty() ? ":" : ",", segment.first, segment.last);
+    return text;
+}
+
 }  // namespace
 
 RenderSummary render_animation(const RenderSettings& settings) {
@@ -198,12 +207,13 @@ std::string describe_scene(const std::string& scene_file) {
     const Scene scene(load_scene_desc(scene_file));
     const SceneDesc& desc = scene.desc();
     std::string text = fmt::format("scene {} ({})\n", desc.name, scene_file);
-    text += fmt::format("frames: {} at {:.6g} fps ({}) ({:.2f} s), {} segment(s)\n", desc.frame_count, desc.fps,
-                        describe_fps_source(desc), desc.frame_count / desc.fps, scene.segments().size());
+    text += fmt::format("frames: {} at {:.6g} fps ({}) ({:.2f} s), {} segment(s){}\n", desc.frame_count, desc.fps,
+                        describe_fps_source(desc), desc.frame_count / desc.fps, scene.segments().size(),
+                        segment_list(scene.segments()));
     text += fmt::format("camera: {}x{}, vertical fov {} deg{}\n", desc.camera.width, desc.camera.height,
                         desc.camera.fov_y_deg, is_chain_animated(desc.camera.placement) ? ", animated" : "");
     long triangles = 0;
-    int area_lights = 0;
+    int area_lights = 0, animated_lights = 0;
     std::string objects;
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         const ObjectDesc& object = desc.objects[i];
@@ -211,16 +221,22 @@ std::string describe_scene(const std::string& scene_file) {
         const long count = mesh ? long(mesh->indices.size() / 3) : 0;
         triangles += count;
         area_lights += object.is_emitter();
+        animated_lights += object.is_emission_animated();
+        const char* emitter = object.is_emission_animated() ? "emitter, animated emission" : object.is_emitter() ? "emitter" : "";
         objects += fmt::format("  {:<20} {:<8} {:>8} {:<10} {}{}\n", object.name, object.is_dynamic() ? "dynamic" : "static",
                                mesh ? fmt::format("{} tris", count) : "sphere", desc.materials[size_t(object.material)].name,
-                               object.is_emitter() ? "emitter" : "", object.marked_dynamic && !is_chain_animated(object.placement) ? " (marked)" : "");
+                               emitter, object.marked_dynamic && !is_chain_animated(object.placement) ? " (marked)" : "");
     }
+    for (const PointLightDesc& light : desc.point_lights) animated_lights += light.is_intensity_animated();
     text += fmt::format("objects: {} ({} static, {} dynamic), {} triangles\n", desc.objects.size(),
                         scene.static_objects().size(), scene.dynamic_objects().size(), triangles);
     text += objects;
-    text += fmt::format("lights: {} area, {} point/spot\n", area_lights, desc.point_lights.size());
+    text += fmt::format("lights: {} area, {} point/spot", area_lights, desc.point_lights.size());
+    text += animated_lights ? fmt::format(", {} animated (switched or dimmed; a new segment where they change)\n", animated_lights)
+                            : std::string("\n");
     for (const PointLightDesc& light : desc.point_lights)
-        text += fmt::format("  {:<20} {}\n", light.name, light.type == PointLightType::point ? "point" : "spot");
+        text += fmt::format("  {:<20} {}{}\n", light.name, light.type == PointLightType::point ? "point" : "spot",
+                            light.is_intensity_animated() ? ", animated intensity" : "");
     text += fmt::format("materials: {}\n", desc.materials.size());
     return text;
 }

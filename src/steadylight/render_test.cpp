@@ -74,5 +74,13 @@ TEST_F(RenderResume, InterruptDropsTheFrameInProgress) {
     EXPECT_EQ(render_animation(m_settings).frames_written, (std::vector<int>{0, 1}));
 }
 
+TEST(Info, NamesAnimatedLightsAndTheSegmentsTheyMake) {
+    const std::string text = describe_scene(std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/scenes/light_switch.json");
+    EXPECT_NE(text.find("2 segment(s): 0-9, 10-19"), std::string::npos) << text;
+    EXPECT_NE(text.find("emitter, animated emission"), std::string::npos) << text;
+    EXPECT_NE(text.find("lights: 1 area, 1 point/spot, 2 animated"), std::string::npos) << text;
+    EXPECT_NE(text.find("spot, animated intensity"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace steadylight

@@ -88,11 +88,12 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         if (!hit) break;  // the background is black
         ++counts.vertices;
         const SurfacePoint sp = make_surface_point(context.scene, context.frame, ray, *hit);
-        const ObjectDesc& object = context.scene.object(sp.object);
+        const Rgb emission = context.frame.emission[size_t(sp.object)];
 
-        // Add emitted light, weighted against light sampling at the previous vertex.
-        if (object.is_emitter()) {
-            const Rgb Le = emitted_radiance(object, sp.ng, -ray.d);
+        // Add emitted light (as bright as it is at this frame), weighted against light sampling
+        // at the previous vertex.
+        if (!is_black(emission)) {
+            const Rgb Le = emitted_radiance(context.scene.object(sp.object), emission, sp.ng, -ray.d);
             if (specular_bounce) {
                 L += beta * Le;
             } else {

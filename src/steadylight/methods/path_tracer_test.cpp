@@ -91,6 +91,28 @@ TEST(PathTracer, SmallQuadLightOverDiffuseFloorMatchesInverseSquareLaw) {
     EXPECT_NEAR(L.r, expected, 0.01f * expected);
 }
 
+/// A lamp whose intensity track doubles at frame 1 lights a floor and a wall (direct and
+/// indirect light): frame 0 equals the same scene with a fixed intensity bit for bit, and frame 1
+/// is exactly twice it. Same frame, same random numbers; doubling is exact in floating point.
+TEST(PathTracer, LampIntensityTrackScalesTheImageExactly) {
+    SceneDesc desc = make_empty_scene({0, 1, 3}, {0, 0.5f, 0}, 12, 8);
+    desc.frame_count = 2;
+    desc.fps = 1;
+    const int white = add_material(desc, {.reflectance = {0.5f, 0.6f, 0.7f}});
+    add_object(desc, make_quad({-5, 0, -5}, {0, 0, 10}, {10, 0, 0}), white);
+    add_object(desc, make_quad({-5, 0, -1}, {10, 0, 0}, {0, 5, 0}), white);
+    desc.point_lights.push_back({.position = {0.5f, 2, 0}, .intensity = {3, 3, 3}});
+    const Scene fixed(desc);
+    desc.point_lights[0].intensity_track = Track<Rgb>{Interpolation::step, {0, 1}, {Rgb{3, 3, 3}, Rgb{6, 6, 6}}};
+    const Scene switched(std::move(desc));
+    const PathTracerSettings settings{.samples_per_pixel = 4};
+    const Image reference = render(fixed, 1, settings);
+    EXPECT_TRUE(render(switched, 0, settings).pixels == render(fixed, 0, settings).pixels);
+    const Image doubled = render(switched, 1, settings);
+    EXPECT_GT(mean(reference).r, 0.0f);
+    for (size_t i = 0; i < reference.pixels.size(); ++i) EXPECT_EQ(doubled.pixels[i], reference.pixels[i] * 2.0f) << "pixel " << i;
+}
+
 TEST(PathTracer, SameImageForOneAndTwoThreads) {
     Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/ball.json"));
     scene.set_resolution(40, 30);

@@ -130,6 +130,28 @@ TEST(PhotonMapping, PointsSeenThroughGlassAreCached) {
     EXPECT_LT(shaded.stats.fallback_gathers, through_glass * test_settings().shading.samples_per_pixel / 5);
 }
 
+Rgb mean(const Image& image) {
+    Rgb sum;
+    for (const Rgb& p : image.pixels) sum += p;
+    return sum / float(image.pixels.size());
+}
+
+/// The ceiling lamp of tests/scenes/light_switch.json, the only light here, is off until frame 10.
+TEST(PhotonMapping, LightSwitchedOnMidAnimationIsBlackThenLit) {
+    SceneDesc desc = load_scene_desc(source_dir + "/tests/scenes/light_switch.json");
+    desc.point_lights.clear();
+    const Scene scene(std::move(desc));
+    PhotonMappingSettings settings = test_settings();
+    settings.photons.global_photons = 20'000;
+    const PhotonFrame off = render(scene, 9, settings), on = render(scene, 10, settings);
+    EXPECT_EQ(off.stats.global_photons_stored, 0);
+    for (const Rgb& pixel : off.beauty.pixels) EXPECT_EQ(pixel, Rgb{});
+    EXPECT_GT(on.stats.global_photons_stored, 0);
+    std::printf("lit: mean direct %.4f, mean indirect %.4f\n", mean(on.direct).r, mean(on.indirect).r);
+    EXPECT_GT(mean(on.direct).r, 0.05f);
+    EXPECT_GT(mean(on.indirect).r, 0.03f);
+}
+
 TEST(PhotonMapping, SameFrameTwiceAndOnOneOrTwoThreadsIsBitIdentical) {
     const Scene scene = load_scene("table", 48, 36);
     PhotonMappingSettings settings = test_settings();

@@ -121,6 +121,72 @@ TEST(Localized, FrozenCacheRecomputesOnlyOnDynamicObjects) {
     EXPECT_LE(frozen.stats.irradiance_records, localized.stats.irradiance_records);
 }
 
+/// tests/scenes/light_switch.json: a static room whose ceiling lamp is off for frames 0-9 and on
+/// for 10-19, and a spot lamp whose intensity doubles at frame 10: two segments.
+SceneDesc light_switch_desc() { return load_scene_desc(source_dir + "/tests/scenes/light_switch.json"); }
+
+TEST(Localized, StaticCacheHashDiffersWhereTheLightIsSwitchedOn) {
+    const Scene switched(light_switch_desc());
+    const PhotonMappingSettings settings = small_settings();
+    ASSERT_EQ(switched.segments().size(), 2u);
+    const uint64_t off = static_inputs_hash(switched, switched.segments()[0], settings);
+    const uint64_t on = static_inputs_hash(switched, switched.segments()[1], settings);
+    EXPECT_NE(off, on);
+    // Only the lights tell the segments apart: with the lights fixed as they are from frame 10
+    // and the same split, both segments hash alike, and like the switched scene's second one.
+    SceneDesc fixed = light_switch_desc();
+    fixed.objects[1].emission_track.reset();
+    fixed.objects[1].emission = {17, 12, 4};
+    fixed.point_lights[0].intensity_track.reset();
+    fixed.point_lights[0].intensity = {6, 6, 6};
+    fixed.segment_starts = {10};
+    const Scene steady(std::move(fixed));
+    ASSERT_EQ(steady.segments().size(), 2u);
+    EXPECT_EQ(static_inputs_hash(steady, steady.segments()[0], settings), on);
+    EXPECT_EQ(static_inputs_hash(steady, steady.segments()[1], settings), on);
+}
+
+TEST(Localized, CacheFileOfTheLightOffIsNotLoadedWithTheLightOn) {
+    const std::string file = (std::filesystem::temp_directory_path() / "steadylight_light_switch_test.irrcache").string();
+    std::filesystem::remove(file);
+    const Scene scene(light_switch_desc());
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    EXPECT_FALSE(load_or_run_segment_pass(scene, tracer, scene.segments()[0], settings, file).loaded);
+    const StaticSolution on = load_or_run_segment_pass(scene, tracer, scene.segments()[1], settings, file);
+    EXPECT_FALSE(on.loaded);
+    EXPECT_NE(on.file_note.find("stale"), std::string::npos) << on.file_note;
+    std::filesystem::remove(file);
+}
+
+/// With the spot lamp removed the ceiling lamp is the only light: the first segment's static
+/// pass finds no light and its frames are black; the second segment's are lit.
+TEST(Localized, SwitchedOnLightGivesADarkThenALitSegment) {
+    SceneDesc desc = light_switch_desc();
+    desc.point_lights.clear();
+    const Scene scene(std::move(desc));
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    std::vector<LocalizedFrame> frames;
+    for (const Segment& segment : scene.segments()) {
+        const StaticSolution solution{run_segment_pass(scene, tracer, segment, settings)};
+        const PlacedFrame placed(scene, tracer, bsdfs, segment.last);
+        frames.push_back(run_frame_pass(placed.context(), solution, settings, LocalizedSettings{}, StaticCacheUse::corrected));
+    }
+    ASSERT_EQ(frames.size(), 2u);
+    for (const Rgb& pixel : frames[0].beauty.pixels) EXPECT_EQ(pixel, Rgb{});
+    float direct = 0, indirect = 0;
+    for (size_t i = 0; i < frames[1].beauty.pixels.size(); ++i) {
+        direct += frames[1].direct.pixels[i].r;
+        indirect += frames[1].indirect_static.pixels[i].r;
+    }
+    const float n = float(frames[1].beauty.pixels.size());
+    std::printf("lit segment: mean direct %.4f, mean static indirect %.4f\n", direct / n, indirect / n);
+    EXPECT_GT(direct / n, 0.05f);
+    EXPECT_GT(indirect / n, 0.03f);
+}
+
 TEST(Localized, StaticCacheIsSavedThenLoadedAndGoesStaleWhenTheSceneChanges) {
     const std::string file = (std::filesystem::temp_directory_path() / "steadylight_localized_test.irrcache").string();
     std::filesystem::remove(file);

@@ -51,16 +51,19 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         add_geometry(h, object.geometry);
         const MaterialDesc& m = scene.desc().materials[size_t(object.material)];
         h.add(int(m.type)), h.add(m.reflectance), h.add(m.transmittance), h.add(m.ior), h.add(m.roughness);
-        h.add(object.emission), h.add(object.two_sided_emission);
+        // The emission at the segment's start: it is constant within the segment (segments split
+        // where a light is switched or dimmed), so a cache of the light off never serves it on.
+        h.add(state.emission[size_t(i)]), h.add(object.two_sided_emission);
     }
     // A moving emitter lights the static scene from where it is at the segment's start.
     for (const int i : scene.dynamic_objects())
         if (scene.object(i).is_emitter()) {
-            h.add(state.world_from_object[size_t(i)]), h.add(scene.object(i).emission);
+            h.add(state.world_from_object[size_t(i)]), h.add(state.emission[size_t(i)]);
             add_geometry(h, scene.object(i).geometry);
         }
-    for (const PointLightDesc& light : scene.desc().point_lights) {
-        h.add(int(light.type)), h.add(light.position), h.add(light.direction), h.add(light.intensity);
+    for (size_t i = 0; i < scene.desc().point_lights.size(); ++i) {
+        const PointLightDesc& light = scene.desc().point_lights[i];
+        h.add(int(light.type)), h.add(light.position), h.add(light.direction), h.add(state.point_light_intensity[i]);
         h.add(light.cone_angle_deg), h.add(light.falloff_start_deg);
     }
     for (int frame = segment.first; frame <= segment.last; ++frame) {

@@ -15,7 +15,8 @@
 namespace steadylight {
 
 /// A hash of everything the static cache of `segment` depends on: the static objects and their
-/// materials, the lights, every camera view, and the settings that shape the cache.
+/// materials, the lights as they are at the segment's start (emissions and intensities
+/// included), every camera view, and the settings that shape the cache.
 uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const PhotonMappingSettings& settings);
 
 /// The static irradiance cache of `segment`: static photons, then records over every distinct

@@ -87,10 +87,11 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
     const std::optional<Hit> hit = m_context.tracer.intersect(ray);
     if (!hit) return c;
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
-    const ObjectDesc& object = m_context.scene.object(surface.object);
-    // An emitter seen by the camera is direct light; seen through a mirror the caller files it
-    // under specular.
-    if (count_emission && object.is_emitter()) c.direct += emitted_radiance(object, surface.ng, -ray.d);
+    // An emitter seen by the camera is direct light (as bright as it is at this frame); seen
+    // through a mirror the caller files it under specular.
+    const Rgb Le = m_context.frame.emission[size_t(surface.object)];
+    if (count_emission && !is_black(Le))
+        c.direct += emitted_radiance(m_context.scene.object(surface.object), Le, surface.ng, -ray.d);
     const SurfacePoint sp = face_towards(surface, ray.d);
     const Bsdf& bsdf = m_context.bsdf_of(sp.object);
     const Frame frame = Frame::from_normal(sp.ns);

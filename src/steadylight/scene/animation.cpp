@@ -7,8 +7,11 @@ namespace {
 
 Vec3 mix(Vec3 a, Vec3 b, float t) { return lerp(a, b, t); }
 Quat mix(Quat a, Quat b, float t) { return slerp(a, b, t); }
+Rgb mix(Rgb a, Rgb b, float t) { return a * (1 - t) + b * t; }
 
-Vec3 hermite(Vec3 p0, Vec3 m0, Vec3 p1, Vec3 m1, float t) {
+/// Vectors and colours: the cubic Hermite basis, component by component.
+template <class T>
+T hermite(T p0, T m0, T p1, T m1, float t) {
     const float t2 = t * t, t3 = t2 * t;
     return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 +
            (t3 - t2) * m1;
@@ -26,6 +29,7 @@ Quat hermite(Quat p0, Quat m0, Quat p1, Quat m1, float t) {
 
 Vec3 scaled(Vec3 v, float s) { return v * s; }
 Quat scaled(Quat q, float s) { return {q.x * s, q.y * s, q.z * s, q.w * s}; }
+Rgb scaled(Rgb c, float s) { return c * s; }
 
 }  // namespace
 
@@ -64,6 +68,7 @@ bool Track<T>::is_constant() const {
 
 template struct Track<Vec3>;
 template struct Track<Quat>;
+template struct Track<Rgb>;
 
 Transform AnimatedTrs::evaluate(float time_s) const {
     const Vec3 t = translation_track ? translation_track->evaluate(time_s) : translation;

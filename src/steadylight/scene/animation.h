@@ -1,11 +1,13 @@
 // Keyframe animation: tracks of translation, rotation and scale, and the placement of an object
 // or camera as translation * rotation * scale whose parts are either fixed or keyframed (the glTF
-// node model). Time is in seconds; frame f of a scene is shown at time f / fps.
+// node model); tracks of colours animate emission and lamp intensity. Time is in seconds; frame f
+// of a scene is shown at time f / fps.
 #pragma once
 
 #include <optional>
 #include <vector>
 
+#include "steadylight/base/color.h"
 #include "steadylight/base/transform.h"
 
 namespace steadylight {

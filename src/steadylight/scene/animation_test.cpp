@@ -27,6 +27,15 @@ TEST(Animation, StepTrackHoldsEachKeyUntilTheNext) {
     EXPECT_EQ(t.evaluate(1.0f), (Vec3{5, 5, 5}));
 }
 
+TEST(Animation, ColourTrackStepsOrInterpolatesEachChannel) {
+    Track<Rgb> step{Interpolation::step, {0, 1}, {Rgb{}, Rgb{17, 12, 4}}};
+    EXPECT_EQ(step.evaluate(0.99f), Rgb{});
+    EXPECT_EQ(step.evaluate(1.0f), (Rgb{17, 12, 4}));
+    Track<Rgb> linear{Interpolation::linear, {0, 2}, {Rgb{}, Rgb{2, 4, 8}}};
+    EXPECT_EQ(linear.evaluate(1.0f), (Rgb{1, 2, 4}));
+    EXPECT_FALSE(linear.is_constant());
+}
+
 TEST(Animation, CubicSplineFollowsHermiteBasis) {
     // Keys 0 -> 1 with zero tangents: the Hermite curve is smoothstep, 0.5 at the middle.
     const auto t = track(Interpolation::cubic_spline, {0, 2},

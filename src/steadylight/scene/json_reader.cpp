@@ -100,15 +100,25 @@ Vec3 JsonObject::vec3(const std::string& key, Vec3 fallback) const {
     return has(key) ? vec3(key) : fallback;
 }
 
-Rgb JsonObject::rgb(const std::string& key, Rgb fallback) const {
-    if (!has(key)) return fallback;
-    const json& value = at(key);
+Rgb JsonObject::rgb_value(const json& value, const std::string& where) const {
     if (value.is_number()) {
-        const float v = checked_number(value, *this, key);
+        const float v = checked_number(value, *this, where);
         return {v, v, v};
     }
-    const std::vector<float> v = fixed_numbers(value, key, 3);
+    const std::vector<float> v = fixed_numbers(value, where, 3);
     return {v[0], v[1], v[2]};
+}
+
+Rgb JsonObject::rgb(const std::string& key, Rgb fallback) const {
+    return has(key) ? rgb_value(at(key), key) : fallback;
+}
+
+std::vector<Rgb> JsonObject::rgbs(const std::string& key) const {
+    const json& value = at(key);
+    if (!value.is_array()) fail(key, "expected an array, got " + value.dump());
+    std::vector<Rgb> result;
+    for (size_t i = 0; i < value.size(); ++i) result.push_back(rgb_value(value[i], key + "/" + std::to_string(i)));
+    return result;
 }
 
 std::vector<float> JsonObject::numbers(const std::string& key) const {

@@ -35,6 +35,8 @@ public:
     Vec3 vec3(const std::string& key) const;
     Vec3 vec3(const std::string& key, Vec3 fallback) const;
     Rgb rgb(const std::string& key, Rgb fallback) const;
+    /// A list of colours, each [r, g, b] or one number for grey, such as keyframe values.
+    std::vector<Rgb> rgbs(const std::string& key) const;
     std::vector<float> numbers(const std::string& key) const;
     /// A list of fixed-size numeric tuples, such as keyframe values.
     std::vector<std::vector<float>> tuples(const std::string& key, size_t size) const;
@@ -53,6 +55,7 @@ private:
     const nlohmann::json& at(const std::string& key) const;
     std::vector<float> fixed_numbers(const nlohmann::json& value, const std::string& where,
                                      size_t size) const;
+    Rgb rgb_value(const nlohmann::json& value, const std::string& where) const;
     std::string path(const std::string& key) const;
 
     const nlohmann::json& m_json;

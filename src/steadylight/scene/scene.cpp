@@ -22,12 +22,35 @@ std::optional<Vec2> Camera::project(Vec3 p) const {
 
 namespace {
 
+std::vector<Rgb> emissions_at(const SceneDesc& desc, float time_s) {
+    std::vector<Rgb> emissions;
+    emissions.reserve(desc.objects.size());
+    for (const ObjectDesc& object : desc.objects) emissions.push_back(object.emission_at(time_s));
+    return emissions;
+}
+
+std::vector<Rgb> point_light_intensities_at(const SceneDesc& desc, float time_s) {
+    std::vector<Rgb> intensities;
+    intensities.reserve(desc.point_lights.size());
+    for (const PointLightDesc& light : desc.point_lights) intensities.push_back(light.intensity_at(time_s));
+    return intensities;
+}
+
+/// True when some emission or lamp intensity at `frame` differs from the frame before.
+bool lights_change_at(const SceneDesc& desc, int frame) {
+    const float before = desc.frame_time_s(frame - 1), now = desc.frame_time_s(frame);
+    return emissions_at(desc, now) != emissions_at(desc, before) ||
+           point_light_intensities_at(desc, now) != point_light_intensities_at(desc, before);
+}
+
 std::vector<Segment> split_into_segments(const SceneDesc& desc) {
     const bool moving_light = std::any_of(desc.objects.begin(), desc.objects.end(),
                                           [](const ObjectDesc& o) { return o.is_emitter() && o.is_dynamic(); });
     std::vector<int> starts{0};
     for (int frame = 1; frame < desc.frame_count; ++frame)
-        if (moving_light || std::count(desc.segment_starts.begin(), desc.segment_starts.end(), frame)) starts.push_back(frame);
+        if (moving_light || std::count(desc.segment_starts.begin(), desc.segment_starts.end(), frame) ||
+            lights_change_at(desc, frame))
+            starts.push_back(frame);
     std::vector<Segment> segments;
     for (size_t i = 0; i < starts.size(); ++i)
         segments.push_back({starts[i], i + 1 < starts.size() ? starts[i + 1] - 1 : desc.frame_count - 1});
@@ -65,6 +88,8 @@ FrameState Scene::evaluate(int frame) const {
     state.world_from_object.reserve(m_desc.objects.size());
     for (const ObjectDesc& object : m_desc.objects)
         state.world_from_object.push_back(evaluate_chain(object.placement, state.time_s));
+    state.emission = emissions_at(m_desc, state.time_s);
+    state.point_light_intensity = point_light_intensities_at(m_desc, state.time_s);
     return state;
 }
 

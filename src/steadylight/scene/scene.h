@@ -1,6 +1,7 @@
 // Scene: the prepared, immutable scene. It owns the SceneDesc, splits objects into static and
-// dynamic (DESIGN.md §2), and answers `evaluate(frame)`: where the camera and every object are at
-// that frame. It knows nothing of Embree; trace/ builds acceleration structures from it.
+// dynamic and the animation into segments (DESIGN.md §2), and answers `evaluate(frame)`: where
+// the camera and every object are at that frame, and how bright every light is. It knows
+// nothing of Embree; trace/ builds acceleration structures from it.
 #pragma once
 
 #include <optional>
@@ -32,12 +33,14 @@ struct Segment {
     int last = 0;
 };
 
-/// Where everything is at one frame.
+/// Where everything is at one frame, and how brightly it shines.
 struct FrameState {
     int frame = 0;
     float time_s = 0;
     Camera camera;
     std::vector<Transform> world_from_object;  // one per object
+    std::vector<Rgb> emission;                 // one per object: its emitted radiance (black: off, or no light)
+    std::vector<Rgb> point_light_intensity;    // one per point or spot light (black: off)
 };
 
 class Scene {
@@ -52,11 +55,14 @@ public:
     const std::vector<int>& dynamic_objects() const { return m_dynamic; }
     int frame_count() const { return m_desc.frame_count; }
     /// The animation's segments (DESIGN.md §2): one by default; a new one where the scene file
-    /// says, and every frame on its own while an emitter moves (its light changes every frame).
+    /// says, at every frame where an emission or a lamp's intensity differs from the frame
+    /// before (a light switched or dimmed), and every frame on its own while an emitter moves
+    /// (its light changes every frame). Within a segment the lights are constant.
     const std::vector<Segment>& segments() const { return m_segments; }
     const Segment& segment_of(int frame) const;
 
-    /// The camera and object placements at `frame` (any integer; time is frame / fps).
+    /// The camera, object placements, emissions and lamp intensities at `frame` (any integer;
+    /// time is frame / fps).
     FrameState evaluate(int frame) const;
     /// Overrides the output resolution (from --size), keeping everything else.
     void set_resolution(int width, int height);

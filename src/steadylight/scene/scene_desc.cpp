@@ -1,5 +1,6 @@
 #include "steadylight/scene/scene_desc.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -48,12 +49,13 @@ Interpolation parse_interpolation(const JsonObject& json) {
     json.fail("interpolation", "unknown interpolation \"" + name + "\" (linear or step)");
 }
 
+/// A track whose `values` are already read: its interpolation and times, checked against them.
 template <class T>
-Track<T> parse_track(const JsonObject& json, size_t size, T (*convert)(const std::vector<float>&)) {
+Track<T> parse_track_keys(const JsonObject& json, std::vector<T> values) {
     Track<T> track;
     track.interpolation = parse_interpolation(json);
     track.times = json.numbers("times");
-    for (const std::vector<float>& v : json.tuples("values", size)) track.values.push_back(convert(v));
+    track.values = std::move(values);
     if (track.times.empty()) json.fail("times", "a track needs at least one key");
     if (track.times.size() != track.values.size())
         json.fail("values", "has " + std::to_string(track.values.size()) + " entries for " +
@@ -65,31 +67,57 @@ Track<T> parse_track(const JsonObject& json, size_t size, T (*convert)(const std
     return track;
 }
 
+template <class T>
+Track<T> parse_track(const JsonObject& json, size_t size, T (*convert)(const std::vector<float>&)) {
+    std::vector<T> values;
+    for (const std::vector<float>& v : json.tuples("values", size)) values.push_back(convert(v));
+    return parse_track_keys(json, std::move(values));
+}
+
+/// A track of emitted radiance or intensity: values [r, g, b] or one number, none negative.
+Track<Rgb> parse_light_track(const JsonObject& json, const std::string& what) {
+    std::vector<Rgb> values = json.rgbs("values");
+    for (size_t i = 0; i < values.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (values[i][c] < 0) json.fail("values/" + std::to_string(i), what + " must not be negative");
+    return parse_track_keys(json, std::move(values));
+}
+
 Vec3 vec3_from(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
 Quat quat_from(const std::vector<float>& v) {
     const Quat q{v[0], v[1], v[2], v[3]};
     return dot(q, q) > 0 ? normalize(q) : Quat{};
 }
 
-/// "transform": {translation, rotation, scale} and "animation": {translation, rotation, scale
-/// tracks}; a track replaces the fixed value of its component.
-AnimatedTrs parse_placement(const JsonObject& json) {
+/// "transform": {translation, rotation, scale}.
+AnimatedTrs parse_transform(const JsonObject& json) {
     AnimatedTrs trs;
-    if (json.has("transform")) {
-        const JsonObject transform = json.object("transform");
-        trs.translation = transform.vec3("translation", {});
-        trs.rotation = parse_rotation(transform, "rotation");
-        trs.scale = transform.vec3("scale", {1, 1, 1});
-        transform.warn_unread();
-    }
+    if (!json.has("transform")) return trs;
+    const JsonObject transform = json.object("transform");
+    trs.translation = transform.vec3("translation", {});
+    trs.rotation = parse_rotation(transform, "rotation");
+    trs.scale = transform.vec3("scale", {1, 1, 1});
+    transform.warn_unread();
+    return trs;
+}
+
+/// The translation, rotation and scale tracks of an "animation" object; a track replaces the
+/// fixed value of its component.
+void parse_trs_tracks(const JsonObject& animation, AnimatedTrs& trs) {
+    if (animation.has("translation"))
+        trs.translation_track = parse_track<Vec3>(animation.object("translation"), 3, vec3_from);
+    if (animation.has("rotation"))
+        trs.rotation_track = parse_track<Quat>(animation.object("rotation"), 4, quat_from);
+    if (animation.has("scale"))
+        trs.scale_track = parse_track<Vec3>(animation.object("scale"), 3, vec3_from);
+}
+
+/// "transform" and "animation" (translation, rotation and scale tracks only).
+AnimatedTrs parse_placement(const JsonObject& json) {
+    AnimatedTrs trs = parse_transform(json);
     if (json.has("animation")) {
         const JsonObject animation = json.object("animation");
-        if (animation.has("translation"))
-            trs.translation_track = parse_track<Vec3>(animation.object("translation"), 3, vec3_from);
-        if (animation.has("rotation"))
-            trs.rotation_track = parse_track<Quat>(animation.object("rotation"), 4, quat_from);
-        if (animation.has("scale"))
-            trs.scale_track = parse_track<Vec3>(animation.object("scale"), 3, vec3_from);
+        parse_trs_tracks(animation, trs);
         animation.warn_unread();
     }
     return trs;
@@ -159,6 +187,14 @@ ObjectDesc parse_object(const JsonObject& json, const std::map<std::string, int>
     for (int c = 0; c < 3; ++c)
         if (object.emission[c] < 0) json.fail("emission", "radiance must not be negative");
     object.two_sided_emission = json.boolean("two_sided", false);
+    // The placement and its tracks, and an emission track, which says whether this is a light.
+    object.placement = {parse_transform(json)};
+    if (json.has("animation")) {
+        const JsonObject animation = json.object("animation");
+        parse_trs_tracks(animation, object.placement[0]);
+        if (animation.has("emission")) object.emission_track = parse_light_track(animation.object("emission"), "radiance");
+        animation.warn_unread();
+    }
     if (json.has("material")) {
         const std::string material = json.string("material");
         const auto it = materials.find(material);
@@ -169,7 +205,6 @@ ObjectDesc parse_object(const JsonObject& json, const std::map<std::string, int>
     } else {
         json.fail("material", "missing required field");
     }
-    object.placement = {parse_placement(json)};
     object.marked_dynamic = json.boolean("dynamic", false);
     json.warn_unread();
     return object;
@@ -199,6 +234,11 @@ PointLightDesc parse_point_light(const JsonObject& json) {
     light.intensity = json.rgb("intensity", {});
     for (int c = 0; c < 3; ++c)
         if (light.intensity[c] < 0) json.fail("intensity", "must not be negative");
+    if (json.has("animation")) {
+        const JsonObject animation = json.object("animation");
+        if (animation.has("intensity")) light.intensity_track = parse_light_track(animation.object("intensity"), "intensity");
+        animation.warn_unread();
+    }
     json.warn_unread();
     return light;
 }
@@ -255,7 +295,25 @@ void validate_placement(const std::vector<AnimatedTrs>& chain, const SceneDesc& 
     }
 }
 
+/// The checks the parser makes on a light track, for tracks built in code or by other loaders.
+void validate_light_track(const std::optional<Track<Rgb>>& track, const std::string& where) {
+    if (!track) return;
+    const size_t per_key = track->interpolation == Interpolation::cubic_spline ? 3 : 1;
+    if (track->times.empty() || track->values.size() != per_key * track->times.size())
+        throw InputError(where, "light track needs keys and one value per key");
+    for (size_t i = 0; i < track->times.size(); ++i)
+        if (!std::isfinite(track->times[i]) || (i > 0 && !(track->times[i] > track->times[i - 1])))
+            throw InputError(where, "light track times must be finite and strictly increasing");
+    for (const Rgb& value : track->values)
+        if (!is_finite(value) || value.r < 0 || value.g < 0 || value.b < 0)
+            throw InputError(where, "light track values must be finite and not negative");
+}
+
 }  // namespace
+
+bool is_ever_lit(const Track<Rgb>& track) {
+    return std::any_of(track.values.begin(), track.values.end(), [](Rgb value) { return !is_black(value); });
+}
 
 void validate(const SceneDesc& desc) {
     const std::string& file = desc.source_file;
@@ -267,6 +325,7 @@ void validate(const SceneDesc& desc) {
         if (object.material < 0 || size_t(object.material) >= desc.materials.size())
             throw InputError(where, "material index out of range");
         if (!is_finite(object.emission)) throw InputError(where, "emission is not finite");
+        validate_light_track(object.emission_track, where + " emission");
         validate_placement(object.placement, desc, where);
         float area = 0;
         if (const auto* mesh = std::get_if<TriangleMesh>(&object.geometry)) {
@@ -280,9 +339,12 @@ void validate(const SceneDesc& desc) {
         }
         if (object.is_emitter() && !(area > 0)) throw InputError(where, "emitter has zero area");
     }
-    for (const PointLightDesc& light : desc.point_lights)
+    for (const PointLightDesc& light : desc.point_lights) {
+        const std::string where = file + ": light \"" + light.name + "\"";
         if (!is_finite(light.position) || !is_finite(light.intensity))
-            throw InputError(file + ": light \"" + light.name + "\"", "position or intensity is not finite");
+            throw InputError(where, "position or intensity is not finite");
+        validate_light_track(light.intensity_track, where + " intensity");
+    }
 }
 
 std::string describe_fps_source(const SceneDesc& desc) {

@@ -3,6 +3,7 @@
 // (scene.h) prepares it for rendering. This is the first stage of the pipeline (DESIGN.md §3).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -38,16 +39,26 @@ struct Sphere {
 
 using Geometry = std::variant<TriangleMesh, Sphere>;
 
+/// True when some key of `track` is not black: the light it drives is on at some time.
+bool is_ever_lit(const Track<Rgb>& track);
+
 struct ObjectDesc {
     std::string name;
     Geometry geometry;
     int material = 0;               // index into SceneDesc::materials
     Rgb emission;                   // radiance leaving the front side; black when not a light
+    std::optional<Track<Rgb>> emission_track;  // when set, replaces `emission` (lights switched or dimmed)
     bool two_sided_emission = false;
     std::vector<AnimatedTrs> placement;  // world_from_object = product, parent first
     bool marked_dynamic = false;    // "dynamic": true in the file, even when not animated
 
-    bool is_emitter() const { return !is_black(emission); }
+    /// The radiance leaving the front side at `time_s`.
+    Rgb emission_at(float time_s) const { return emission_track ? emission_track->evaluate(time_s) : emission; }
+    /// True when the object emits at some time: it is an area light (off where its emission is black).
+    bool is_emitter() const { return emission_track ? is_ever_lit(*emission_track) : !is_black(emission); }
+    bool is_emission_animated() const { return emission_track && !emission_track->is_constant(); }
+    /// Moving, or marked dynamic. Emission that changes does not count: within a segment it is
+    /// constant (segments split where it changes), so it lights the static scene (DESIGN.md §2).
     bool is_dynamic() const { return marked_dynamic || is_chain_animated(placement); }
 };
 
@@ -61,8 +72,13 @@ struct PointLightDesc {
     Vec3 position;
     Vec3 direction{0, -1, 0};
     Rgb intensity;
+    std::optional<Track<Rgb>> intensity_track;  // when set, replaces `intensity`
     float cone_angle_deg = 30;
     float falloff_start_deg = 25;
+
+    /// The radiant intensity at `time_s`.
+    Rgb intensity_at(float time_s) const { return intensity_track ? intensity_track->evaluate(time_s) : intensity; }
+    bool is_intensity_animated() const { return intensity_track && !intensity_track->is_constant(); }
 };
 
 /// A pinhole camera looking down its local -z with +y up (the glTF convention).
@@ -104,7 +120,8 @@ SceneDesc load_scene_desc(const std::string& path);
 /// "from the glTF keys, one every 1/39 s".
 std::string describe_fps_source(const SceneDesc& desc);
 
-/// Checks what no single loader can: indices in range, finite numbers, emitters with area.
+/// Checks what no single loader can: indices in range, finite numbers, emitters with area,
+/// well-formed emission and intensity tracks.
 void validate(const SceneDesc& desc);
 
 }  // namespace steadylight

@@ -2,12 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "steadylight/base/error.h"
 #include "steadylight/scene/scene.h"
 #include "steadylight/scene/shapes.h"
+#include "support/input_error.h"
 
 namespace steadylight {
 namespace {
@@ -15,6 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string scenes_dir = std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/";
+// A ceiling lamp off for frames 0-9 and on for 10-19; a spot lamp whose intensity doubles then.
+const std::string light_switch_scene = std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/scenes/light_switch.json";
 
 /// A scratch folder per test, removed afterwards.
 class SceneFiles : public ::testing::Test {
@@ -99,6 +103,45 @@ TEST(SceneDesc, CornellIsStatic) {
     const Scene scene(load_scene_desc(scenes_dir + "cornell.json"));
     EXPECT_TRUE(scene.dynamic_objects().empty());
     EXPECT_EQ(scene.frame_count(), 1);
+}
+
+TEST(SceneDesc, SwitchedLightsHaveTheFramesEmissionAndIntensity) {
+    const Scene scene(load_scene_desc(light_switch_scene));
+    const ObjectDesc& lamp = scene.object(1);
+    ASSERT_TRUE(lamp.emission_track.has_value());
+    EXPECT_TRUE(lamp.is_emitter());
+    EXPECT_TRUE(lamp.is_emission_animated());
+    EXPECT_TRUE(scene.desc().point_lights[0].is_intensity_animated());
+    EXPECT_EQ(scene.evaluate(0).emission[1], Rgb{});
+    EXPECT_EQ(scene.evaluate(9).emission[1], Rgb{});
+    EXPECT_EQ(scene.evaluate(10).emission[1], (Rgb{17, 12, 4}));
+    EXPECT_EQ(scene.evaluate(19).emission[1], (Rgb{17, 12, 4}));
+    EXPECT_EQ(scene.evaluate(10).emission[0], Rgb{});  // the room is no light
+    EXPECT_EQ(scene.evaluate(9).point_light_intensity[0], (Rgb{3, 3, 3}));
+    EXPECT_EQ(scene.evaluate(10).point_light_intensity[0], (Rgb{6, 6, 6}));
+}
+
+TEST(SceneDesc, LightSwitchedOnStartsASegmentAndStaysStatic) {
+    const Scene scene(load_scene_desc(light_switch_scene));
+    ASSERT_EQ(scene.segments().size(), 2u);
+    EXPECT_EQ(scene.segments()[0].first, 0);
+    EXPECT_EQ(scene.segments()[0].last, 9);
+    EXPECT_EQ(scene.segments()[1].first, 10);
+    EXPECT_EQ(scene.segments()[1].last, 19);
+    // A light with a new value per segment does not move: its geometry is static.
+    EXPECT_TRUE(scene.dynamic_objects().empty());
+}
+
+TEST(SceneDesc, LightTrackBuiltInCodeIsValidatedToo) {
+    SceneDesc desc = load_scene_desc(light_switch_scene);
+    desc.objects[1].emission_track->values[1] = {1, std::nanf(""), 1};
+    EXPECT_NE(testing::input_error_of([&] { const Scene scene(desc); }).find("ceiling lamp"), std::string::npos);
+    desc = load_scene_desc(light_switch_scene);
+    desc.point_lights[0].intensity_track->values[0] = {-1, 0, 0};
+    EXPECT_NE(testing::input_error_of([&] { const Scene scene(desc); }).find("desk lamp"), std::string::npos);
+    desc = load_scene_desc(light_switch_scene);
+    desc.point_lights[0].intensity_track->times = {1, 0};
+    EXPECT_NE(testing::input_error_of([&] { const Scene scene(desc); }).find("increasing"), std::string::npos);
 }
 
 TEST(SceneDesc, BoxNormalsPointOutward) {
@@ -193,6 +236,103 @@ TEST_F(SceneFiles, MovingLightMakesEveryFrameItsOwnSegment) {
         "animation": {"translation": {"times": [0, 1], "values": [[0,1,0],[1,1,0]]}}})";
     const Scene scene(load_scene_desc(write_scene(light, R"(, "frames": {"count": 4, "fps": 4})")));
     EXPECT_EQ(scene.segments().size(), 4u);
+}
+
+std::string sphere_light_with_track(const std::string& track) {
+    return R"({"name": "bulb", "shape": {"type": "sphere", "center": [0, 1, 0], "radius": 0.1}, "animation": {"emission": )" +
+           track + "}}";
+}
+
+TEST_F(SceneFiles, LinearEmissionTrackMakesEveryChangingFrameItsOwnSegment) {
+    // Frames at t = 0, 0.25, 0.5, 0.75: the ramp ends at frame 2, then nothing changes.
+    const Scene scene(load_scene_desc(write_scene(
+        sphere_light_with_track(R"({"interpolation": "linear", "times": [0, 0.5], "values": [[0, 0, 0], [2, 4, 6]]})"),
+        R"(, "frames": {"count": 4, "fps": 4})")));
+    EXPECT_EQ(scene.evaluate(1).emission[0], (Rgb{1, 2, 3}));
+    EXPECT_EQ(scene.evaluate(3).emission[0], (Rgb{2, 4, 6}));
+    ASSERT_EQ(scene.segments().size(), 3u);
+    EXPECT_EQ(scene.segments()[1].first, 1);
+    EXPECT_EQ(scene.segments()[1].last, 1);
+    EXPECT_EQ(scene.segments()[2].first, 2);
+    EXPECT_EQ(scene.segments()[2].last, 3);
+    EXPECT_FALSE(scene.object(0).is_dynamic());
+}
+
+TEST_F(SceneFiles, ConstantEmissionTrackNeitherAnimatesNorSplits) {
+    const Scene scene(load_scene_desc(write_scene(sphere_light_with_track(R"({"times": [0, 1], "values": [5, [5, 5, 5]]})"),
+                                                  R"(, "frames": {"count": 20, "fps": 10})")));
+    EXPECT_FALSE(scene.object(0).is_emission_animated());
+    EXPECT_EQ(scene.segments().size(), 1u);
+}
+
+TEST_F(SceneFiles, LampIntensityTrackStepsAndSplitsBesideTheExplicitSegments) {
+    const std::string lamp = R"(, "frames": {"count": 10, "fps": 10}, "segments": [3],
+        "lights": [{"type": "point", "position": [0, 1, 0],
+                    "animation": {"intensity": {"interpolation": "step", "times": [0.5], "values": [[1, 2, 3]]}}},
+                   {"type": "point", "position": [0, 1, 0], "intensity": 1,
+                    "animation": {"intensity": {"interpolation": "step", "times": [0, 0.7], "values": [1, 0]}}}])";
+    const Scene scene(load_scene_desc(write_scene(floor_quad, lamp)));
+    EXPECT_EQ(scene.evaluate(0).point_light_intensity[0], (Rgb{1, 2, 3}));  // held before the first key
+    EXPECT_EQ(scene.evaluate(6).point_light_intensity[1], (Rgb{1, 1, 1}));
+    EXPECT_EQ(scene.evaluate(7).point_light_intensity[1], Rgb{});          // switched off
+    ASSERT_EQ(scene.segments().size(), 3u);
+    EXPECT_EQ(scene.segments()[1].first, 3);
+    EXPECT_EQ(scene.segments()[1].last, 6);
+    EXPECT_EQ(scene.segments()[2].first, 7);
+}
+
+TEST_F(SceneFiles, LampSwitchedOffStartsASegment) {
+    const std::string lamp = R"(, "frames": {"count": 10, "fps": 10},
+        "lights": [{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0],
+                    "animation": {"intensity": {"interpolation": "step", "times": [0, 0.7], "values": [1, 0]}}}])";
+    const Scene scene(load_scene_desc(write_scene(floor_quad, lamp)));
+    ASSERT_EQ(scene.segments().size(), 2u);
+    EXPECT_EQ(scene.segments()[1].first, 7);
+}
+
+TEST_F(SceneFiles, EmissionTrackErrorsNameTheirPointer) {
+    expect_error(write_scene(sphere_light_with_track(R"({"times": [0, 1], "values": [1, -1]})")),
+                 {"scene.json:/objects/0/animation/emission/values/1", "must not be negative"});
+    expect_error(write_scene(sphere_light_with_track(R"({"times": [0, 1], "values": [1, [0, -2, 0]]})")),
+                 {"scene.json:/objects/0/animation/emission/values/1", "must not be negative"});
+    expect_error(write_scene(sphere_light_with_track(R"({"times": [1, 0], "values": [1, 2]})")),
+                 {"scene.json:/objects/0/animation/emission/times", "increasing"});
+    expect_error(write_scene(sphere_light_with_track(R"({"times": [0, 1], "values": [1]})")),
+                 {"scene.json:/objects/0/animation/emission/values", "1 entries for 2 times"});
+    expect_error(write_scene(sphere_light_with_track(R"({"times": [0], "values": [[1, 2]]})")),
+                 {"scene.json:/objects/0/animation/emission/values/0", "3 numbers"});
+    expect_error(write_scene(sphere_light_with_track(R"({"times": [0], "values": ["bright"]})")),
+                 {"scene.json:/objects/0/animation/emission/values/0", "got \"bright\""});
+    expect_error(write_scene(sphere_light_with_track(R"({"times": [0], "values": [1e999]})")),
+                 {"scene.json", "overflow"});
+    expect_error(write_scene(sphere_light_with_track(R"({"interpolation": "smooth", "times": [0], "values": [1]})")),
+                 {"scene.json:/objects/0/animation/emission/interpolation", "unknown interpolation"});
+}
+
+TEST_F(SceneFiles, IntensityTrackErrorsNameTheirPointer) {
+    const auto lamp_with_track = [](const std::string& track) {
+        return R"(, "lights": [{"type": "point", "position": [0, 1, 0], "animation": {"intensity": )" + track + "}}]";
+    };
+    expect_error(write_scene(floor_quad, lamp_with_track(R"({"times": [0, 1], "values": [-3, 1]})")),
+                 {"scene.json:/lights/0/animation/intensity/values/0", "must not be negative"});
+    expect_error(write_scene(floor_quad, lamp_with_track(R"({"times": [0, 0], "values": [1, 2]})")),
+                 {"scene.json:/lights/0/animation/intensity/times", "increasing"});
+    expect_error(write_scene(floor_quad, lamp_with_track(R"({"times": [0, 1, 2], "values": [1, 2]})")),
+                 {"scene.json:/lights/0/animation/intensity/values", "2 entries for 3 times"});
+    expect_error(write_scene(floor_quad, lamp_with_track(R"({"times": [], "values": []})")),
+                 {"scene.json:/lights/0/animation/intensity/times", "at least one key"});
+    expect_error(write_scene(floor_quad, lamp_with_track(R"([1, 2])")),
+                 {"scene.json:/lights/0/animation/intensity", "expected an object"});
+}
+
+TEST_F(SceneFiles, LightOffAtSomeFramesIsFineButZeroAreaIsNot) {
+    const std::string off_then_on = R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [0,0,1]},
+        "animation": {"emission": {"interpolation": "step", "times": [0, 1], "values": [0, 5]}}})";
+    const SceneDesc desc = load_scene_desc(write_scene(off_then_on, R"(, "frames": {"count": 2, "fps": 1})"));
+    EXPECT_TRUE(desc.objects[0].is_emitter());  // a light, off at frame 0; it reflects nothing
+    const std::string flat = R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [2,0,0]},
+        "animation": {"emission": {"interpolation": "step", "times": [0, 1], "values": [0, 5]}}})";
+    expect_error(write_scene(flat), {"lamp", "zero area"});
 }
 
 TEST_F(SceneFiles, MissingCameraIsAnError) {

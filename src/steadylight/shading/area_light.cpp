@@ -17,11 +17,11 @@ struct Triangle {
 
 class AreaLight final : public Light {
 public:
-    AreaLight(const ObjectDesc& object, std::vector<Triangle> triangles, std::vector<float> cdf, float area)
-        : m_object(object), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area) {}
+    AreaLight(const ObjectDesc& object, Rgb Le, std::vector<Triangle> triangles, std::vector<float> cdf, float area)
+        : m_object(object), m_Le(Le), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area) {}
 
-    AreaLight(const ObjectDesc& object, Vec3 center, float radius)
-        : m_object(object), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius) {}
+    AreaLight(const ObjectDesc& object, Rgb Le, Vec3 center, float radius)
+        : m_object(object), m_Le(Le), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius) {}
 
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const override {
         LightSample s;
@@ -30,7 +30,7 @@ public:
         s.distance = length(d);
         if (!(s.distance > 0)) return std::nullopt;
         s.wi = d / s.distance;
-        s.Li = emitted_radiance(m_object, s.n, -s.wi);
+        s.Li = emitted_radiance(m_object, m_Le, s.n, -s.wi);
         s.pdf = area_to_solid_angle(1 / m_area, ref, s.p, s.n);
         if (is_black(s.Li) || !(s.pdf > 0)) return std::nullopt;
         return s;
@@ -40,7 +40,7 @@ public:
         return area_to_solid_angle(1 / m_area, ref, p, n);
     }
 
-    float power() const override { return luminance(m_object.emission) * pi * m_area * sides(); }
+    float power() const override { return luminance(m_Le) * pi * m_area * sides(); }
 
     std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const override {
         EmissionSample s;
@@ -53,7 +53,7 @@ public:
         }
         // Cosine-weighted directions: Le cos / (pdf_area pdf_direction) = Le pi A (per side).
         s.d = Frame::from_normal(s.n).to_world(sample_cosine_hemisphere(u_direction));
-        s.power = m_object.emission * (pi * m_area * sides());
+        s.power = m_Le * (pi * m_area * sides());
         return s;
     }
 
@@ -78,6 +78,7 @@ private:
     }
 
     const ObjectDesc& m_object;
+    Rgb m_Le;  // emitted radiance at this frame
     std::vector<Triangle> m_triangles;
     std::vector<float> m_cdf;
     Vec3 m_center;
@@ -85,7 +86,7 @@ private:
     float m_area = 0;
 };
 
-std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, const TriangleMesh& mesh,
+std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, Rgb Le, const TriangleMesh& mesh,
                                        const Transform& world_from_object) {
     std::vector<Triangle> triangles;
     std::vector<float> cdf;
@@ -110,7 +111,7 @@ std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, const TriangleM
     if (!(area > 0)) throw InputError(object.name, "emitter has zero area");
     for (float& c : cdf) c /= area;
     cdf.back() = 1;
-    return std::make_unique<AreaLight>(object, std::move(triangles), std::move(cdf), area);
+    return std::make_unique<AreaLight>(object, Le, std::move(triangles), std::move(cdf), area);
 }
 
 }  // namespace
@@ -118,8 +119,9 @@ std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, const TriangleM
 std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& frame, int object) {
     const ObjectDesc& desc = scene.object(object);
     const Transform& world_from_object = frame.world_from_object[size_t(object)];
+    const Rgb Le = frame.emission[size_t(object)];
     if (const auto* mesh = std::get_if<TriangleMesh>(&desc.geometry))
-        return make_mesh_light(desc, *mesh, world_from_object);
+        return make_mesh_light(desc, Le, *mesh, world_from_object);
     // A sphere light must stay a sphere: uneven scaling would need ellipsoid sampling.
     const Sphere& sphere = std::get<Sphere>(desc.geometry);
     const float sx = length(world_from_object.vector({1, 0, 0}));
@@ -127,7 +129,7 @@ std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& fra
     const float sz = length(world_from_object.vector({0, 0, 1}));
     if (std::abs(sx - sy) > 1e-4f * sx || std::abs(sx - sz) > 1e-4f * sx)
         throw InputError(desc.name, "an emissive sphere must be scaled uniformly");
-    return std::make_unique<AreaLight>(desc, world_from_object.point(sphere.center), sphere.radius * sx);
+    return std::make_unique<AreaLight>(desc, Le, world_from_object.point(sphere.center), sphere.radius * sx);
 }
 
 }  // namespace steadylight

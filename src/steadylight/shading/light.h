@@ -1,6 +1,7 @@
 // Lights: emissive objects (area lights) and point and spot lights, and the LightSet that picks
 // one in proportion to its power for next-event estimation. Built per frame, since emissive
-// objects may move. Interface here, one file per kind of light.
+// objects may move and lights may be switched or dimmed (FrameState's emission and intensity).
+// Interface here, one file per kind of light.
 #pragma once
 
 #include <memory>
@@ -45,12 +46,16 @@ public:
     virtual std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const = 0;
 };
 
-/// Area light over the world-space surface of emissive object `object` at this frame.
+/// Area light over the world-space surface of emissive object `object` at this frame, with the
+/// frame's emission.
 std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& frame, int object);
-std::unique_ptr<Light> make_point_light(const PointLightDesc& desc);
+/// A point or spot light with radiant intensity `intensity` (the lamp's at the frame).
+std::unique_ptr<Light> make_point_light(const PointLightDesc& desc, Rgb intensity);
 
 class LightSet {
 public:
+    /// The lights that are on at `frame`; a light whose emission or intensity is black at the
+    /// frame is left out (switched off).
     LightSet(const Scene& scene, const FrameState& frame);
 
     bool empty() const { return m_lights.empty(); }

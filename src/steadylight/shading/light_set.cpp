@@ -15,11 +15,13 @@ float area_to_solid_angle(float pdf_area, Vec3 ref, Vec3 p, Vec3 n) {
 LightSet::LightSet(const Scene& scene, const FrameState& frame)
     : m_light_of_object(scene.objects().size(), -1) {
     for (int object = 0; object < int(scene.objects().size()); ++object) {
-        if (!scene.object(object).is_emitter()) continue;
+        if (is_black(frame.emission[size_t(object)])) continue;
         m_light_of_object[size_t(object)] = int(m_lights.size());
         m_lights.push_back(make_area_light(scene, frame, object));
     }
-    for (const PointLightDesc& light : scene.desc().point_lights) m_lights.push_back(make_point_light(light));
+    for (size_t i = 0; i < scene.desc().point_lights.size(); ++i)
+        if (!is_black(frame.point_light_intensity[i]))
+            m_lights.push_back(make_point_light(scene.desc().point_lights[i], frame.point_light_intensity[i]));
 
     // Choose lights in proportion to power; uniformly if none has any.
     float total = 0;

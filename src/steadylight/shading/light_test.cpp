@@ -41,9 +41,10 @@ ObjectDesc ceiling_light(float size, float z, Rgb emission, float x = 0, float y
     return object(make_quad(corner, {0, size, 0}, {size, 0, 0}), emission, two_sided);
 }
 
-/// A scene built from `desc` and its lights at frame 0. Not copyable: the lights refer to the scene.
+/// A scene built from `desc` and its lights at `frame_index`. Not copyable: the lights refer to the scene.
 struct Lit {
-    explicit Lit(SceneDesc desc) : scene(std::move(desc)), frame(scene.evaluate(0)), lights(scene, frame) {}
+    explicit Lit(SceneDesc desc, int frame_index = 0)
+        : scene(std::move(desc)), frame(scene.evaluate(frame_index)), lights(scene, frame) {}
     Lit(const Lit&) = delete;
     Lit& operator=(const Lit&) = delete;
 
@@ -266,6 +267,41 @@ TEST(LightSet, SpotLightIsFullInsideItsInnerConeAndDarkOutsideItsOuterCone) {
     EXPECT_GT(li_at_angle(26), li_at_angle(29)) << "fades towards the edge";
     EXPECT_EQ(li_at_angle(31), 0.0f);
     EXPECT_FALSE(sample_once(lit.lights, {std::tan(pi / 4), 0, 0}).has_value()) << "outside: no sample";
+}
+
+TEST(LightSet, SwitchedOffEmitterIsLeftOutUntilItIsSwitchedOn) {
+    SceneDesc desc = scene_with({ceiling_light(1, 2, {})});
+    desc.frame_count = 2;
+    desc.fps = 1;
+    desc.objects[0].emission_track = Track<Rgb>{Interpolation::step, {0, 1}, {Rgb{}, Rgb{5, 5, 5}}};
+    const Lit off(desc, 0), on(desc, 1);
+    EXPECT_TRUE(off.lights.empty());
+    EXPECT_FALSE(off.lights.sample_emission(0.5f, {0.3f, 0.6f}, {0.2f, 0.7f}).has_value());
+    EXPECT_EQ(off.lights.pdf_emitter(0, origin, {0, 0, 2}, {0, 0, -1}), 0.0f);
+    const std::optional<LightSample> s = sample_once(on.lights, origin);
+    ASSERT_TRUE(s.has_value());
+    EXPECT_EQ(s->Li, (Rgb{5, 5, 5}));
+    const std::optional<EmissionSample> e = on.lights.sample_emission(0.5f, {0.3f, 0.6f}, {0.2f, 0.7f});
+    ASSERT_TRUE(e.has_value());
+    EXPECT_NEAR(e->power.r, 5 * pi, 1e-4f);  // Le pi A, A = 1
+}
+
+TEST(LightSet, PointLightShinesWithTheFramesIntensity) {
+    SceneDesc desc = empty_scene();
+    desc.frame_count = 3;
+    desc.fps = 2;
+    PointLightDesc lamp = point_light({0, 0, 1}, {100, 100, 100});  // the track replaces it
+    lamp.intensity_track = Track<Rgb>{Interpolation::linear, {0, 0.5f, 1}, {Rgb{2, 2, 2}, Rgb{4, 8, 0}, Rgb{}}};
+    desc.point_lights.push_back(lamp);
+    const Lit first(desc, 0), middle(desc, 1), last(desc, 2);
+    const std::optional<LightSample> s0 = sample_once(first.lights, origin), s1 = sample_once(middle.lights, origin);
+    ASSERT_TRUE(s0.has_value() && s1.has_value());
+    EXPECT_EQ(s0->Li, (Rgb{2, 2, 2}));  // distance 1
+    EXPECT_EQ(s1->Li, (Rgb{4, 8, 0}));
+    const std::optional<EmissionSample> e = middle.lights.sample_emission(0.5f, {0.3f, 0.6f}, {0.2f, 0.7f});
+    ASSERT_TRUE(e.has_value());
+    EXPECT_NEAR(e->power.g, 8 * 4 * pi, 1e-3f);
+    EXPECT_TRUE(last.lights.empty()) << "switched off at the last key";
 }
 
 }  // namespace

@@ -12,8 +12,9 @@ namespace {
 
 class PointLight final : public Light {
 public:
-    explicit PointLight(const PointLightDesc& desc)
+    PointLight(const PointLightDesc& desc, Rgb intensity)
         : m_desc(desc),
+          m_intensity(intensity),
           m_cos_cone(std::cos(desc.cone_angle_deg * pi / 180)),
           m_cos_falloff_start(std::cos(desc.falloff_start_deg * pi / 180)) {}
 
@@ -24,7 +25,7 @@ public:
         s.distance = length(d);
         if (!(s.distance > 0)) return std::nullopt;
         s.wi = d / s.distance;
-        s.Li = m_desc.intensity * (falloff(-s.wi) / (s.distance * s.distance));
+        s.Li = m_intensity * (falloff(-s.wi) / (s.distance * s.distance));
         s.pdf = 1;
         s.is_delta = true;
         if (is_black(s.Li)) return std::nullopt;
@@ -34,7 +35,7 @@ public:
     float pdf_li(Vec3, Vec3, Vec3) const override { return 0; }
 
     float power() const override {
-        const float lum = luminance(m_desc.intensity);
+        const float lum = luminance(m_intensity);
         if (m_desc.type == PointLightType::point) return 4 * pi * lum;
         // The cone's solid angle up to the middle of the falloff band.
         return 2 * pi * (1 - 0.5f * (m_cos_cone + m_cos_falloff_start)) * lum;
@@ -45,7 +46,7 @@ public:
         s.p = m_desc.position;
         if (m_desc.type == PointLightType::point) {
             s.d = sample_uniform_sphere(u_direction);
-            s.power = m_desc.intensity * (4 * pi);
+            s.power = m_intensity * (4 * pi);
             return s;
         }
         // Uniform directions in the spot's cone, weighted by its falloff.
@@ -54,7 +55,7 @@ public:
         const float phi = 2 * pi * u_direction.y;
         s.d = Frame::from_normal(m_desc.direction)
                   .to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
-        s.power = m_desc.intensity * (falloff(s.d) * 2 * pi * (1 - m_cos_cone));
+        s.power = m_intensity * (falloff(s.d) * 2 * pi * (1 - m_cos_cone));
         return s;
     }
 
@@ -70,12 +71,15 @@ private:
     }
 
     PointLightDesc m_desc;
+    Rgb m_intensity;  // at this frame
     float m_cos_cone;
     float m_cos_falloff_start;
 };
 
 }  // namespace
 
-std::unique_ptr<Light> make_point_light(const PointLightDesc& desc) { return std::make_unique<PointLight>(desc); }
+std::unique_ptr<Light> make_point_light(const PointLightDesc& desc, Rgb intensity) {
+    return std::make_unique<PointLight>(desc, intensity);
+}
 
 }  // namespace steadylight

@@ -40,8 +40,8 @@ SurfacePoint make_surface_point(const Scene& scene, const FrameState& frame, con
     return sp;
 }
 
-Rgb emitted_radiance(const ObjectDesc& object, Vec3 ng, Vec3 w) {
-    return object.two_sided_emission || dot(ng, w) > 0 ? object.emission : Rgb{};
+Rgb emitted_radiance(const ObjectDesc& object, Rgb Le, Vec3 ng, Vec3 w) {
+    return object.two_sided_emission || dot(ng, w) > 0 ? Le : Rgb{};
 }
 
 std::optional<Bounce> sample_bounce(const Bsdf& bsdf, const SurfacePoint& sp, Vec3 d, Vec2 u, float u_lobe,

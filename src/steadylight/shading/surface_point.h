@@ -31,7 +31,8 @@ struct Bounce {
 std::optional<Bounce> sample_bounce(const Bsdf& bsdf, const SurfacePoint& sp, Vec3 d, Vec2 u, float u_lobe,
                                     TransportMode mode);
 
-/// Radiance that `object` emits from a point with front normal `ng` towards direction `w`.
-Rgb emitted_radiance(const ObjectDesc& object, Vec3 ng, Vec3 w);
+/// Radiance that `object`, emitting `Le` at this frame (FrameState::emission), emits from a
+/// point with front normal `ng` towards direction `w`.
+Rgb emitted_radiance(const ObjectDesc& object, Rgb Le, Vec3 ng, Vec3 w);
 
 }  // namespace steadylight
