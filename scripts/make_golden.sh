@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Renders the converged path-traced references that the photon-mapping tests compare against:
-# frame 0 of every truth-suite scene (docs/truth-suite.md) at 80x60, 4096 samples per pixel, into tests/scenes/golden/.
+# a frame of every truth-suite scene (docs/truth-suite.md) at 80x60, 4096 samples per pixel, into tests/scenes/golden/.
 # Run after changing the path tracer or the scenes: bash scripts/make_golden.sh [BINARY]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 binary=${1:-build/steadylight}
 out=tests/scenes/golden
-for scene in cornell ball table corridor mirror_room flythrough glass_move; do
-  "$binary" render "scenes/$scene.json" --method path --frames 0 --spp 4096 --size 80x60 --out "$out" --no-progress
-  rm -f "$out/${scene}_0000.png"
+# SCENE or SCENE:FRAME (a frame in a later segment).
+for entry in cornell ball table corridor mirror_room flythrough glass_move switch_room:15; do
+  scene=${entry%%:*} frame=0
+  [[ $entry == *:* ]] && frame=${entry#*:}
+  "$binary" render "scenes/$scene.json" --method path --frames "$frame" --spp 4096 --size 80x60 --out "$out" --no-progress
+  rm -f "$out/${scene}_$(printf %04d "$frame").png"
 done

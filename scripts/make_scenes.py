@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes the scenes: scenes/ball.json, table.json and cornell.json, and the truth suite's
-corridor.json, mirror_room.json, flythrough.json and glass_move.json (docs/truth-suite.md).
+corridor.json, mirror_room.json, flythrough.json, glass_move.json and switch_room.json
+(docs/truth-suite.md).
 
 BALL and TABLE follow ../shared/scenes/BALL.md and TABLE.md exactly; their keyframes (one per
 frame, linear in between) are computed here. The JSON files are committed too, so the renderer
@@ -211,6 +212,25 @@ def glass_move_scene():
             "materials": materials, "objects": objects}
 
 
+def switch_room_scene():
+    """BALL's room lit by its ceiling light and a spot lamp, where a second ceiling light switches
+    on at frame 15 (a step in its emission) and the lamp dims: two segments, each with its own
+    static cache, while a ball rolls across the floor."""
+    objects = cornell_room_objects()
+    on = SUITE_FRAMES // 2 / FPS
+    objects.append({"name": "second_light", "shape": quad([0.8, 5.49, 0.8], [1.0, 0, 0], [0, 0, 1.0]),
+                    "animation": {"emission": {"interpolation": "step", "times": [0, round(on, 6)],
+                                               "values": [0, [10, 10, 12]]}}})
+    ts = suite_times()
+    objects.append({"name": "ball", "shape": {"type": "sphere", "center": [0, 0, 0], "radius": 0.5},
+                    "material": "blue", "animation": {"translation": keyframes([[1.2 + 3.0 * t, 0.5, 2.0] for t in ts])}})
+    lights = [{"type": "spot", "name": "lamp", "position": [4.8, 4.5, 0.8], "direction": [-0.4, -1, 0.5],
+               "intensity": 8, "cone_degrees": 30,
+               "animation": {"intensity": {"interpolation": "step", "times": [0, round(on, 6)], "values": [8, 3]}}}]
+    return {"name": "switch_room", "frames": {"count": SUITE_FRAMES, "fps": FPS}, "camera": ball_camera(),
+            "materials": cornell_materials(), "objects": objects, "lights": lights}
+
+
 def dumps(scene):
     """Indented JSON with short numeric arrays kept on one line."""
     text = json.dumps(scene, indent=2)
@@ -220,7 +240,8 @@ def dumps(scene):
 def main():
     scenes = [("ball", ball_scene()), ("table", table_scene()), ("cornell", cornell_scene()),
               ("corridor", corridor_scene()), ("mirror_room", mirror_room_scene()),
-              ("flythrough", flythrough_scene()), ("glass_move", glass_move_scene())]
+              ("flythrough", flythrough_scene()), ("glass_move", glass_move_scene()),
+              ("switch_room", switch_room_scene())]
     for name, scene in scenes:
         with open(os.path.join(SCENES, name + ".json"), "w") as f:
             f.write(dumps(scene))

@@ -158,6 +158,8 @@ int main(int argc, char** argv) {
     render->add_flag("--fixed-seed", settings.path.fixed_seed,
                      "path: the same random numbers per pixel and camera sample in every frame, so frames "
                      "differ only where paths meet what moved");
+    render->add_option("--seed", settings.path.seed, "path: another seed gives independent noise (references' noise floor)")
+        ->capture_default_str();
     render->add_flag("!--no-progress", settings.show_progress, "No progress output");
     render->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
     add_output_options(render, settings, raw);
