@@ -11,5 +11,6 @@ for entry in cornell ball table corridor mirror_room flythrough glass_move switc
   scene=${entry%%:*} frame=0
   [[ $entry == *:* ]] && frame=${entry#*:}
   "$binary" render "scenes/$scene.json" --method path --frames "$frame" --spp 4096 --size 80x60 --out "$out" --no-progress
-  rm -f "$out/${scene}_$(printf %04d "$frame").png"
+  name=${scene}_$(printf %04d "$frame")
+  rm -f "$out/$name.png" "$out/$name.manifest.json" "$out/$name.stats.json" "$out/$scene.settings.json"
 done
