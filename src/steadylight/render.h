@@ -20,7 +20,7 @@ struct RenderSummary {
 };
 
 /// Renders the selected frames and writes `<out>/<scene>_<frame:04>.exr` (with AOV layers) and
-/// `.png` for each, for photon mapping `<scene>_<frame:04>.stats.json`, then the frame's
+/// `.png` for each, its statistics `<scene>_<frame:04>.stats.json`, then the frame's
 /// manifest; and `<out>/<scene>.settings.json` before the first frame. Frames whose outputs are
 /// complete are skipped unless `settings.overwrite`. An interrupt stops it at the next
 /// checkpoint: the frame in progress is dropped and the summary says so.
