@@ -61,6 +61,10 @@ public:
     bool empty() const { return m_lights.empty(); }
     /// Picks a light with `u_select` and samples it; the pdf includes the choice.
     std::optional<LightSample> sample(Vec3 ref, float u_select, Vec2 u) const;
+    /// \brief Picks a light with u.x and samples it with (the remainder of u.x within the
+    /// light's share, u.y); the pdf is sample()'s. Stratified u then stratify each light's
+    /// area as well as the choice.
+    std::optional<LightSample> sample_reusing(Vec3 ref, Vec2 u) const;
     /// Picks a light in proportion to power with `u_select` and samples a photon start from it.
     std::optional<EmissionSample> sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const;
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.

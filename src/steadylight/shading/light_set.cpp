@@ -58,6 +58,19 @@ std::optional<LightSample> LightSet::sample(Vec3 ref, float u_select, Vec2 u) co
     return s;
 }
 
+std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec2 u) const {
+    if (m_lights.empty()) return std::nullopt;
+    const auto [i, p_select] = choose(u.x);
+    if (p_select <= 0) return std::nullopt;
+    // u.x is uniform over the chosen light's share of [0,1): rescaled, it is uniform again.
+    const float lo = i ? m_cdf[i - 1] : 0;
+    const float u_light = std::clamp((u.x - lo) / p_select, 0.0f, 0x1.fffffep-1f);
+    std::optional<LightSample> s = m_lights[i]->sample_li(ref, {u_light, u.y});
+    if (!s || !(s->pdf > 0)) return std::nullopt;
+    s->pdf *= p_select;
+    return s;
+}
+
 float LightSet::pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const {
     const int i = m_light_of_object[size_t(object)];
     if (i < 0) return 0;

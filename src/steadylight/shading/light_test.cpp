@@ -222,6 +222,30 @@ TEST(LightSet, LightsAreChosenInProportionToTheirPower) {
     EXPECT_NEAR(double(chose_bright) / n, 0.75, 0.01);
 }
 
+// Stratified numbers for sample_reusing: the choice takes u.x, so each light gets its share of
+// the strata (to one sample) and its remainder stays uniform, so the estimate stays unbiased.
+TEST(LightSet, ReusingTheChoiceGivesEachLightItsShareOfStratifiedSamples) {
+    const Lit lit(scene_with({ceiling_light(1, 1, {1, 1, 1}, -2), ceiling_light(1, 1, {3, 3, 3}, 2)}));
+    constexpr uint32_t n = 1000;
+    const Vec3 ref{0.3f, -0.2f, 0};
+    int chose_bright = 0;
+    double sum = 0, sum_independent = 0;
+    Pcg32 rng(5);
+    for (uint32_t i = 0; i < n; ++i) {
+        const std::optional<LightSample> s = lit.lights.sample_reusing(ref, stratified_2d(i, n, {0.37f, 0.81f}));
+        ASSERT_TRUE(s.has_value());
+        chose_bright += s->p.x > 0;
+        EXPECT_NEAR(lit.lights.pdf_emitter(s->p.x > 0 ? 1 : 0, ref, s->p, s->n), s->pdf, 1e-4f * s->pdf);
+        sum += luminance(s->Li) * s->wi.z / s->pdf;
+    }
+    EXPECT_NEAR(chose_bright, 750, 1);
+    for (uint32_t i = 0; i < 200 * n; ++i) {
+        const std::optional<LightSample> s = lit.lights.sample(ref, rng.next_float(), rng.next_vec2());
+        if (s) sum_independent += luminance(s->Li) * s->wi.z / s->pdf;
+    }
+    EXPECT_NEAR(sum / n, sum_independent / (200 * n), 0.01 * sum_independent / (200 * n));
+}
+
 PointLightDesc point_light(Vec3 position, Rgb intensity) {
     PointLightDesc light;
     light.position = position;
