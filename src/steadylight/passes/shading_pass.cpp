@@ -56,9 +56,16 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
                          const LightStrata& strata, Pcg32& rng) const {
     Rgb sum;
     for (int s = 0; s < m_settings.direct_samples; ++s) {
-        const float u_select = rng.next_float();
-        const Vec2 u = strata.count ? stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift) : rng.next_vec2();
-        const std::optional<LightSample> light = m_context.lights.sample(sp.p, u_select, u);
+        // Stratified: the choice of light takes the stratified dimension and passes its
+        // remainder on, so each light's area is stratified too, not only the pixel's samples.
+        // Lights are chosen by what they could give this point (no MIS here to agree with).
+        std::optional<LightSample> light;
+        if (strata.count)
+            light = m_context.lights.sample_reusing(sp.p, sp.ns, stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift));
+        else {
+            const float u_select = rng.next_float();
+            light = m_context.lights.sample(sp.p, u_select, rng.next_vec2());
+        }
         if (!light) continue;
         const Vec3 wi = frame.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);

@@ -18,10 +18,13 @@ struct Triangle {
 class AreaLight final : public Light {
 public:
     AreaLight(const ObjectDesc& object, Rgb Le, std::vector<Triangle> triangles, std::vector<float> cdf, float area)
-        : m_object(object), m_Le(Le), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area) {}
+        : m_object(object), m_Le(Le), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area) {
+        bound_triangles();
+    }
 
     AreaLight(const ObjectDesc& object, Rgb Le, Vec3 center, float radius)
-        : m_object(object), m_Le(Le), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius) {}
+        : m_object(object), m_Le(Le), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius),
+          m_bound_radius(radius) {}
 
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const override {
         LightSample s;
@@ -42,6 +45,12 @@ public:
 
     float power() const override { return luminance(m_Le) * pi * m_area * sides(); }
 
+    float importance(Vec3 ref, Vec3 n) const override {
+        // The area a sphere shows from any side is a quarter of its surface.
+        const float shown_area = m_triangles.empty() ? m_area / 4 : m_area;
+        return importance_bound(luminance(m_Le) * shown_area, ref, n, m_center, m_bound_radius, m_bound_normal);
+    }
+
     std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const override {
         EmissionSample s;
         sample_point(u_position, s.p, s.n);
@@ -58,6 +67,24 @@ public:
     }
 
 private:
+    /// Bounds the triangles by a sphere about their area-weighted centre, and keeps their
+    /// normal if they are one flat, one-sided emitter.
+    void bound_triangles() {
+        m_center = {};
+        for (size_t i = 0; i < m_triangles.size(); ++i) {
+            const Triangle& t = m_triangles[i];
+            const float share = m_cdf[i] - (i ? m_cdf[i - 1] : 0);
+            m_center += (t.p0 + t.p1 + t.p2) * (share / 3);
+        }
+        bool flat = !m_object.two_sided_emission;
+        for (const Triangle& t : m_triangles) {
+            for (const Vec3 p : {t.p0, t.p1, t.p2}) m_bound_radius = std::max(m_bound_radius, length(p - m_center));
+            flat = flat && dot(t.n, m_triangles[0].n) > 0.9999f;
+        }
+        m_bound_radius *= 1.0001f;  // rounding
+        if (flat) m_bound_normal = m_triangles[0].n;
+    }
+
     float sides() const { return m_object.two_sided_emission ? 2.0f : 1.0f; }
 
     void sample_point(Vec2 u, Vec3& p, Vec3& n) const {
@@ -84,6 +111,8 @@ private:
     Vec3 m_center;
     float m_radius = 0;
     float m_area = 0;
+    float m_bound_radius = 0;  // about m_center
+    Vec3 m_bound_normal;       // zero unless flat and one-sided
 };
 
 std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, Rgb Le, const TriangleMesh& mesh,

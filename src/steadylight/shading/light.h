@@ -42,6 +42,10 @@ public:
     virtual float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const = 0;
     /// Total emitted power (luminance of W), used to choose lights.
     virtual float power() const = 0;
+    /// \brief An upper estimate of the luminance of irradiance the light could give a surface
+    /// at `ref` with normal `n`, unoccluded (bounding-sphere cone bounds, as pbrt-v4's
+    /// LightBounds::Importance). Zero only where the light cannot reach that surface.
+    virtual float importance(Vec3 ref, Vec3 n) const = 0;
     /// Samples a photon start; pdf-weighted as EmissionSample says (without light selection).
     virtual std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const = 0;
 };
@@ -61,6 +65,17 @@ public:
     bool empty() const { return m_lights.empty(); }
     /// Picks a light with `u_select` and samples it; the pdf includes the choice.
     std::optional<LightSample> sample(Vec3 ref, float u_select, Vec2 u) const;
+    /// \brief Picks a light with u.x and samples it with (the remainder of u.x within the
+    /// light's share, u.y); the pdf is sample()'s. Stratified u then stratify each light's
+    /// area as well as the choice.
+    std::optional<LightSample> sample_reusing(Vec3 ref, Vec2 u) const;
+    /// \brief sample_reusing() with lights chosen by their importance() at `ref` (normal `n`),
+    /// mixed with the power choice so that every light keeps some chance; the pdf includes that
+    /// choice, which pdf_emitter() does not know (its caller has no normal), so this is for
+    /// estimators that do not weigh against BSDF sampling. Above `max_lights_by_importance`
+    /// lights, the power choice.
+    std::optional<LightSample> sample_reusing(Vec3 ref, Vec3 n, Vec2 u) const;
+    static constexpr size_t max_lights_by_importance = 32;
     /// Picks a light in proportion to power with `u_select` and samples a photon start from it.
     std::optional<EmissionSample> sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const;
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
@@ -74,6 +89,11 @@ private:
     /// The light `u_select` picks and the probability of picking it.
     std::pair<size_t, float> choose(float u_select) const;
 };
+
+/// \brief An upper estimate of `intensity` cos_ref cos_light / distance^2 over a light inside the
+/// sphere (`center`, `radius`), seen from `ref` with normal `n`: each cosine tilted towards its
+/// normal by the sphere's angular radius. `light_n` zero: the light shines every way.
+float importance_bound(float intensity, Vec3 ref, Vec3 n, Vec3 center, float radius, Vec3 light_n);
 
 /// Converts an area-measure pdf at `p` (normal `n`) into solid angle as seen from `ref`.
 float area_to_solid_angle(float pdf_area, Vec3 ref, Vec3 p, Vec3 n);

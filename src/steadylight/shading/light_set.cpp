@@ -1,9 +1,28 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "steadylight/shading/light.h"
 
 namespace steadylight {
+
+float importance_bound(float intensity, Vec3 ref, Vec3 n, Vec3 center, float radius, Vec3 light_n) {
+    const Vec3 d = center - ref;
+    const float distance2 = length2(d);
+    // Inside the bounding sphere nothing can be bounded: count the light at its radius.
+    if (distance2 <= radius * radius) return intensity / std::max(radius * radius, 1e-12f);
+    const float distance = std::sqrt(distance2);
+    const Vec3 wi = d / distance;
+    const float theta_bound = std::asin(std::min(1.0f, radius / distance));
+    // Each cosine is bounded by tilting its direction towards the normal by the sphere's angle.
+    const auto cos_bound = [&](float cos_theta) {
+        return std::cos(std::max(0.0f, std::acos(std::clamp(cos_theta, -1.0f, 1.0f)) - theta_bound));
+    };
+    const float cos_ref = cos_bound(dot(n, wi));
+    const float cos_light = length2(light_n) > 0 ? cos_bound(dot(light_n, -wi)) : 1.0f;
+    if (cos_ref <= 0 || cos_light <= 0) return 0;
+    return intensity * cos_ref * cos_light / distance2;
+}
 
 float area_to_solid_angle(float pdf_area, Vec3 ref, Vec3 p, Vec3 n) {
     const Vec3 d = p - ref;
@@ -53,6 +72,42 @@ std::optional<LightSample> LightSet::sample(Vec3 ref, float u_select, Vec2 u) co
     const auto [i, p_select] = choose(u_select);
     if (p_select <= 0) return std::nullopt;
     std::optional<LightSample> s = m_lights[i]->sample_li(ref, u);
+    if (!s || !(s->pdf > 0)) return std::nullopt;
+    s->pdf *= p_select;
+    return s;
+}
+
+std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec2 u) const {
+    if (m_lights.empty()) return std::nullopt;
+    const auto [i, p_select] = choose(u.x);
+    if (p_select <= 0) return std::nullopt;
+    // u.x is uniform over the chosen light's share of [0,1): rescaled, it is uniform again.
+    const float lo = i ? m_cdf[i - 1] : 0;
+    const float u_light = std::clamp((u.x - lo) / p_select, 0.0f, 0x1.fffffep-1f);
+    std::optional<LightSample> s = m_lights[i]->sample_li(ref, {u_light, u.y});
+    if (!s || !(s->pdf > 0)) return std::nullopt;
+    s->pdf *= p_select;
+    return s;
+}
+
+std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec3 n, Vec2 u) const {
+    const size_t count = m_lights.size();
+    if (count == 0 || count > max_lights_by_importance) return sample_reusing(ref, u);
+    // A share of the power choice keeps every light possible however rough the bound is.
+    constexpr float power_share = 0.1f;
+    std::array<float, max_lights_by_importance> cdf;
+    float total = 0;
+    for (size_t i = 0; i < count; ++i) total += (cdf[i] = m_lights[i]->importance(ref, n));
+    if (!(total > 0) || !std::isfinite(total)) return sample_reusing(ref, u);
+    float sum = 0;
+    for (size_t i = 0; i < count; ++i)
+        cdf[i] = (sum += (1 - power_share) * cdf[i] / total + power_share * (m_cdf[i] - (i ? m_cdf[i - 1] : 0)));
+    cdf[count - 1] = 1;
+    const size_t i = std::min(size_t(std::upper_bound(cdf.begin(), cdf.begin() + long(count), u.x) - cdf.begin()), count - 1);
+    const float lo = i ? cdf[i - 1] : 0, p_select = cdf[i] - lo;
+    if (!(p_select > 0)) return std::nullopt;
+    const float u_light = std::clamp((u.x - lo) / p_select, 0.0f, 0x1.fffffep-1f);
+    std::optional<LightSample> s = m_lights[i]->sample_li(ref, {u_light, u.y});
     if (!s || !(s->pdf > 0)) return std::nullopt;
     s->pdf *= p_select;
     return s;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <initializer_list>
@@ -220,6 +221,57 @@ TEST(LightSet, LightsAreChosenInProportionToTheirPower) {
     }
     // Standard error sqrt(0.25 * 0.75 / n) = 0.0014: the bound is 7 of them.
     EXPECT_NEAR(double(chose_bright) / n, 0.75, 0.01);
+}
+
+// Stratified numbers for sample_reusing: the choice takes u.x, so each light gets its share of
+// the strata (to one sample) and its remainder stays uniform, so the estimate stays unbiased.
+TEST(LightSet, ReusingTheChoiceGivesEachLightItsShareOfStratifiedSamples) {
+    const Lit lit(scene_with({ceiling_light(1, 1, {1, 1, 1}, -2), ceiling_light(1, 1, {3, 3, 3}, 2)}));
+    constexpr uint32_t n = 1000;
+    const Vec3 ref{0.3f, -0.2f, 0};
+    int chose_bright = 0;
+    double sum = 0, sum_independent = 0;
+    Pcg32 rng(5);
+    for (uint32_t i = 0; i < n; ++i) {
+        const std::optional<LightSample> s = lit.lights.sample_reusing(ref, stratified_2d(i, n, {0.37f, 0.81f}));
+        ASSERT_TRUE(s.has_value());
+        chose_bright += s->p.x > 0;
+        EXPECT_NEAR(lit.lights.pdf_emitter(s->p.x > 0 ? 1 : 0, ref, s->p, s->n), s->pdf, 1e-4f * s->pdf);
+        sum += luminance(s->Li) * s->wi.z / s->pdf;
+    }
+    EXPECT_NEAR(chose_bright, 750, 1);
+    for (uint32_t i = 0; i < 200 * n; ++i) {
+        const std::optional<LightSample> s = lit.lights.sample(ref, rng.next_float(), rng.next_vec2());
+        if (s) sum_independent += luminance(s->Li) * s->wi.z / s->pdf;
+    }
+    EXPECT_NEAR(sum / n, sum_independent / (200 * n), 0.01 * sum_independent / (200 * n));
+}
+
+// Choosing by importance: the near light above the receiver gets most samples, the (two-sided)
+// one below its horizon only the power share; every sample's pdf is its light's pdf times the choice, so
+// the estimate still agrees with the power choice's.
+TEST(LightSet, ChoosingByImportanceFavoursTheLightThatCanReachThePointAndStaysUnbiased) {
+    const Lit lit(scene_with({ceiling_light(0.5f, 1, {1, 1, 1}, 0.2f), ceiling_light(0.5f, 3, {1, 1, 1}, 2),
+                              ceiling_light(0.5f, -1, {5, 5, 5}, -1, 0, true)}));
+    constexpr uint32_t n = 20'000;
+    const Vec3 ref{0.1f, 0, 0}, up{0, 0, 1};
+    std::array<int, 3> chosen{};
+    double sum = 0, sum_by_power = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        const Vec2 u = stratified_2d(i, n, {0.37f, 0.81f});
+        const std::optional<LightSample> s = lit.lights.sample_reusing(ref, up, u);
+        if (s) {
+            const int light = s->p.z < 0 ? 2 : s->p.z > 2 ? 1 : 0;
+            ++chosen[size_t(light)];
+            sum += luminance(s->Li) * std::max(0.0f, s->wi.z) / s->pdf;
+        }
+        const std::optional<LightSample> b = lit.lights.sample_reusing(ref, u);
+        if (b) sum_by_power += luminance(b->Li) * std::max(0.0f, b->wi.z) / b->pdf;
+    }
+    // Power 1 : 1 : 5 x 2 sides gives the light below 10/12 by power; by importance only 0.1 * 10/12.
+    EXPECT_NEAR(chosen[2], 0.1 * 10 / 12 * n, 2);
+    EXPECT_GT(chosen[0], 10 * chosen[1]);
+    EXPECT_NEAR(sum / n, sum_by_power / n, 0.01 * sum_by_power / n);
 }
 
 PointLightDesc point_light(Vec3 position, Rgb intensity) {

@@ -41,6 +41,11 @@ public:
         return 2 * pi * (1 - 0.5f * (m_cos_cone + m_cos_falloff_start)) * lum;
     }
 
+    float importance(Vec3 ref, Vec3 n) const override {
+        const Vec3 wi = normalize(m_desc.position - ref);
+        return importance_bound(luminance(m_intensity) * falloff(-wi), ref, n, m_desc.position, 0, {});
+    }
+
     std::optional<EmissionSample> sample_emission(Vec2, Vec2 u_direction) const override {
         EmissionSample s;
         s.p = m_desc.position;
