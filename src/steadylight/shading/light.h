@@ -88,6 +88,9 @@ private:
 
     /// The light `u_select` picks and the probability of picking it.
     std::pair<size_t, float> choose(float u_select) const;
+    /// Samples light `i`, chosen with probability `p_select` by u.x in [lo, lo + p_select): the
+    /// rest of u.x, rescaled to [0,1), and u.y place the point on it; the pdf includes the choice.
+    std::optional<LightSample> sample_chosen(size_t i, float lo, float p_select, Vec3 ref, Vec2 u) const;
 };
 
 /// \brief An upper estimate of `intensity` cos_ref cos_light / distance^2 over a light inside the

@@ -81,8 +81,11 @@ std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec2 u) const {
     if (m_lights.empty()) return std::nullopt;
     const auto [i, p_select] = choose(u.x);
     if (p_select <= 0) return std::nullopt;
+    return sample_chosen(i, i ? m_cdf[i - 1] : 0, p_select, ref, u);
+}
+
+std::optional<LightSample> LightSet::sample_chosen(size_t i, float lo, float p_select, Vec3 ref, Vec2 u) const {
     // u.x is uniform over the chosen light's share of [0,1): rescaled, it is uniform again.
-    const float lo = i ? m_cdf[i - 1] : 0;
     const float u_light = std::clamp((u.x - lo) / p_select, 0.0f, 0x1.fffffep-1f);
     std::optional<LightSample> s = m_lights[i]->sample_li(ref, {u_light, u.y});
     if (!s || !(s->pdf > 0)) return std::nullopt;
@@ -106,11 +109,7 @@ std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec3 n, Vec2 u) co
     const size_t i = std::min(size_t(std::upper_bound(cdf.begin(), cdf.begin() + long(count), u.x) - cdf.begin()), count - 1);
     const float lo = i ? cdf[i - 1] : 0, p_select = cdf[i] - lo;
     if (!(p_select > 0)) return std::nullopt;
-    const float u_light = std::clamp((u.x - lo) / p_select, 0.0f, 0x1.fffffep-1f);
-    std::optional<LightSample> s = m_lights[i]->sample_li(ref, {u_light, u.y});
-    if (!s || !(s->pdf > 0)) return std::nullopt;
-    s->pdf *= p_select;
-    return s;
+    return sample_chosen(i, lo, p_select, ref, u);
 }
 
 float LightSet::pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const {
