@@ -27,6 +27,15 @@ inline Vec3 sample_uniform_sphere(Vec2 u) {
 }
 constexpr float uniform_sphere_pdf() { return 1 / (4 * pi); }
 
+/// Uniform direction in the cone of half-angle acos(cos_max) around +z. pdf = uniform_cone_pdf.
+inline Vec3 sample_uniform_cone(Vec2 u, float cos_max) {
+    const float cos_theta = 1 - u.x * (1 - cos_max);
+    const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
+    const float phi = 2 * pi * u.y;
+    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+inline float uniform_cone_pdf(float cos_max) { return 1 / (2 * pi * (1 - cos_max)); }
+
 /// Uniform barycentrics (b1, b2) on a triangle; the third is 1 - b1 - b2.
 inline Vec2 sample_uniform_triangle(Vec2 u) {
     const float su = std::sqrt(u.x);

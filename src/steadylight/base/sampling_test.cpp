@@ -62,6 +62,18 @@ TEST(Sampling, UniformSphereSamplesFollowTheirPdf) {
     expect_follows_pdf(sample_uniform_sphere, [](Vec3) { return uniform_sphere_pdf(); }, -1.0f);
 }
 
+TEST(Sampling, UniformConePdfIntegratesToOneOverTheCone) {
+    const float cos_max = 0.6f;
+    const auto pdf = [&](Vec3 w) { return w.z >= cos_max ? uniform_cone_pdf(cos_max) : 0.0f; };
+    EXPECT_NEAR(integrate_over_sphere(pdf, 2000, 64), 1.0, 2e-3);
+}
+
+TEST(Sampling, UniformConeSamplesFollowTheirPdf) {
+    const float cos_max = 0.3f;
+    expect_follows_pdf([&](Vec2 u) { return sample_uniform_cone(u, cos_max); },
+                       [&](Vec3 w) { return w.z >= cos_max ? uniform_cone_pdf(cos_max) : 0.0f; }, cos_max);
+}
+
 TEST(Sampling, UniformTriangleBarycentricsLieInsideTheTriangle) {
     Pcg32 rng(2);
     for (int i = 0; i < 10'000; ++i) {

@@ -6,6 +6,7 @@
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/rng.h"
 #include "steadylight/base/settings_check.h"
+#include "steadylight/photons/caustic_targets.h"
 #include "steadylight/shading/surface_point.h"
 
 namespace steadylight {
@@ -50,15 +51,18 @@ struct PhotonPath {
 
 class PhotonTracer {
 public:
-    PhotonTracer(const FrameContext& context, const PhotonSettings& settings, MapKind kind, Visibility visibility)
-        : m_context(context), m_settings(settings), m_kind(kind), m_visibility(visibility) {}
+    /// `targets`: where caustic photons are aimed (nullptr: emitted as the lights emit).
+    PhotonTracer(const FrameContext& context, const PhotonSettings& settings, MapKind kind, Visibility visibility,
+                 const CausticTargets* targets)
+        : m_context(context), m_settings(settings), m_kind(kind), m_visibility(visibility), m_targets(targets) {}
 
     /// Emits photon `index` from the lights and follows it and any negative photon it spawns.
     void trace(uint64_t index, float scale, PhotonOutput out) const {
         PhotonSampler sampler(index);
         const float u_select = sampler.next();
         const Vec2 u_position = sampler.next_vec2();
-        const std::optional<EmissionSample> e = m_context.lights.sample_emission(u_select, u_position, sampler.next_vec2());
+        const Vec2 u_direction = sampler.next_vec2();
+        const std::optional<EmissionSample> e = emit(u_select, u_position, u_direction);
         if (!e || is_black(e->power)) return;
         // Photons from area lights leave the surface; point lights have no surface to leave.
         const Ray ray = length2(e->n) > 0 ? spawn_ray(e->p, e->n, e->d) : Ray{e->p, e->d};
@@ -66,6 +70,7 @@ public:
     }
 
 private:
+    std::optional<EmissionSample> emit(float u_select, Vec2 u_position, Vec2 u_direction) const;
     void follow(PhotonPath path, PhotonOutput out) const;
     void store(const PhotonPath& path, const Photon& photon, PhotonOutput out) const;
 
@@ -73,7 +78,22 @@ private:
     const PhotonSettings& m_settings;
     MapKind m_kind;
     Visibility m_visibility;
+    const CausticTargets* m_targets;
 };
+
+/// A photon's start: aimed at the caustic targets where that pays, else as its light emits.
+std::optional<EmissionSample> PhotonTracer::emit(float u_select, Vec2 u_position, Vec2 u_direction) const {
+    const LightSet& lights = m_context.lights;
+    if (m_targets) {
+        const std::optional<EmissionPoint> at = lights.sample_emission_point(u_select, u_position);
+        const std::optional<AimedDirection> aim = at ? m_targets->sample(at->p, u_direction) : std::nullopt;
+        if (aim) {
+            const Vec3 n = dot(at->n, aim->d) < 0 ? -at->n : at->n;  // the side it leaves
+            return EmissionSample{at->p, n, aim->d, lights.emitted_intensity(*at, aim->d) / (at->pdf * aim->pdf)};
+        }
+    }
+    return lights.sample_emission(u_select, u_position, u_direction);
+}
 
 void PhotonTracer::store(const PhotonPath& path, const Photon& photon, PhotonOutput out) const {
     const bool direct = path.bounce == 0;
@@ -133,7 +153,9 @@ std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long coun
     // The caustic map uses other points of the sequence than the global one.
     const uint64_t first = kind == MapKind::global ? 0 : uint64_t(1) << 32;
     const float scale = 1.0f / float(count);
-    const PhotonTracer tracer(context, settings, kind, visibility);
+    const std::optional<CausticTargets> targets =
+        kind == MapKind::caustic ? std::optional<CausticTargets>(std::in_place, context, visibility) : std::nullopt;
+    const PhotonTracer tracer(context, settings, kind, visibility, targets ? &*targets : nullptr);
     parallel_for_chunks(count, chunk, [&](long begin, long end) {
         const size_t c = size_t(begin / chunk);
         const PhotonOutput out{main[c], dynamic ? &dynamic_photons[c] : nullptr};

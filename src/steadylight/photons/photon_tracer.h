@@ -1,6 +1,7 @@
 // Photon tracing, the first pass of photon mapping (Jensen 2001, ch. 5): photons leave the lights
 // in proportion to their power and bounce through the scene by the BSDFs, with Russian roulette
-// by reflectance so that the power of surviving photons stays constant. Every random decision of
+// by reflectance so that the power of surviving photons stays constant. Caustic photons are aimed
+// at the specular and glossy objects (caustic_targets.h). Every random decision of
 // photon i comes from point i of the scrambled Halton sequence (base/halton.h), so the photons
 // of a frame depend only on the scene at that frame (paper §4).
 //

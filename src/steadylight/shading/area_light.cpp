@@ -66,6 +66,17 @@ public:
         return s;
     }
 
+    EmissionPoint sample_emission_point(Vec2 u) const override {
+        EmissionPoint at;
+        sample_point(u, at.p, at.n);
+        at.pdf = 1 / m_area;
+        return at;
+    }
+
+    Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const override {
+        return emitted_radiance(m_object, m_Le, at.n, d) * std::abs(dot(at.n, d));
+    }
+
 private:
     /// Bounds the triangles by a sphere about their area-weighted centre, and keeps their
     /// normal if they are one flat, one-sided emitter.

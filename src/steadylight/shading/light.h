@@ -33,6 +33,14 @@ struct EmissionSample {
     Rgb power;      // Le cos / (pdf_position pdf_direction), divided by the light's selection probability
 };
 
+/// Where a photon leaves a light before its direction is chosen (for photons aimed at targets).
+struct EmissionPoint {
+    size_t light = 0;  // index in the LightSet
+    Vec3 p;
+    Vec3 n;         // the emitting surface's front normal (zero for point lights)
+    float pdf = 0;  // by area on the light (1 for point lights), times the light's selection probability
+};
+
 class Light {
 public:
     virtual ~Light() = default;
@@ -48,6 +56,11 @@ public:
     virtual float importance(Vec3 ref, Vec3 n) const = 0;
     /// Samples a photon start; pdf-weighted as EmissionSample says (without light selection).
     virtual std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const = 0;
+    /// Samples where a photon leaves, leaving the direction to the caller; pdf without selection.
+    virtual EmissionPoint sample_emission_point(Vec2 u) const = 0;
+    /// \brief Radiant intensity leaving `at` towards unit `d`, per unit of `at`'s pdf measure:
+    /// Le |cos| on an emitting side of an area light (zero on the other), a lamp's intensity.
+    virtual Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const = 0;
 };
 
 /// Area light over the world-space surface of emissive object `object` at this frame, with the
@@ -78,6 +91,10 @@ public:
     static constexpr size_t max_lights_by_importance = 32;
     /// Picks a light in proportion to power with `u_select` and samples a photon start from it.
     std::optional<EmissionSample> sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const;
+    /// \brief Picks a light in proportion to power with `u_select` and a point on it; the photon's
+    /// direction is the caller's (power = emitted_intensity / (pdf of the point and direction)).
+    std::optional<EmissionPoint> sample_emission_point(float u_select, Vec2 u_position) const;
+    Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const { return m_lights[at.light]->emitted_intensity(at, d); }
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
     float pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const;
 

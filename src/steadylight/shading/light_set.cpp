@@ -67,6 +67,16 @@ std::optional<EmissionSample> LightSet::sample_emission(float u_select, Vec2 u_p
     return s;
 }
 
+std::optional<EmissionPoint> LightSet::sample_emission_point(float u_select, Vec2 u_position) const {
+    if (m_lights.empty()) return std::nullopt;
+    const auto [i, p_select] = choose(u_select);
+    if (p_select <= 0) return std::nullopt;
+    EmissionPoint at = m_lights[i]->sample_emission_point(u_position);
+    at.light = i;
+    at.pdf *= p_select;
+    return at;
+}
+
 std::optional<LightSample> LightSet::sample(Vec3 ref, float u_select, Vec2 u) const {
     if (m_lights.empty()) return std::nullopt;
     const auto [i, p_select] = choose(u_select);

@@ -55,14 +55,19 @@ public:
             return s;
         }
         // Uniform directions in the spot's cone, weighted by its falloff.
-        const float cos_theta = 1 - u_direction.x * (1 - m_cos_cone);
-        const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
-        const float phi = 2 * pi * u_direction.y;
-        s.d = Frame::from_normal(m_desc.direction)
-                  .to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
-        s.power = m_intensity * (falloff(s.d) * 2 * pi * (1 - m_cos_cone));
+        s.d = Frame::from_normal(m_desc.direction).to_world(sample_uniform_cone(u_direction, m_cos_cone));
+        s.power = m_intensity * (falloff(s.d) / uniform_cone_pdf(m_cos_cone));
         return s;
     }
+
+    EmissionPoint sample_emission_point(Vec2) const override {
+        EmissionPoint at;
+        at.p = m_desc.position;
+        at.pdf = 1;
+        return at;
+    }
+
+    Rgb emitted_intensity(const EmissionPoint&, Vec3 d) const override { return m_intensity * falloff(d); }
 
 private:
     /// 1 inside the spot's inner cone, 0 outside it, smoothstep between (pbrt-v4 SpotLight).
