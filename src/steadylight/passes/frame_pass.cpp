@@ -98,12 +98,14 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     const IrradianceCache& transported = frozen ? static_cache : corrected;
 
     // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects.
-    const auto gather = make_point_gather(context, irradiance, max_radius, photon.gather);
+    const auto full_gather = make_point_gather(context, irradiance, max_radius, photon.gather);
+    const auto rough_gather = make_point_gather(context, irradiance, max_radius, rough_gather_settings(photon.gather));
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra) {
         const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
         const float I = on_dynamic || influence.values.empty() ? 0.0f : influence.at(pixel.x, pixel.y);
         const float weight = on_dynamic ? 1.0f : (frozen ? 0.0f : blend_weight(I, localized));
+        const auto& gather = pixel.minor_branch ? rough_gather : full_gather;
         const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
             return PixelMemo::Values{
                 weight > 0 ? cached_irradiance(dynamic_cache, sp, n, gather, fallbacks, gather_rays) : Rgb{},

@@ -1,5 +1,7 @@
 #include "steadylight/passes/photon_gather.h"
 
+#include <algorithm>
+
 #include "steadylight/base/rng.h"
 #include "steadylight/shading/surface_point.h"
 
@@ -84,11 +86,17 @@ CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuil
 std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
                                                                         const IrradiancePhotons& photons, float max_radius,
                                                                         const GatherSettings& gather) {
-    return [&context, &photons, max_radius, &gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
+    return [&context, &photons, max_radius, gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
         return final_gather(sp.p, n, sp.ng, dirs, gather, [&](const Ray& r) {
             return gather_from_photons(context, photons, max_radius, Visibility::everything, r);
         });
     };
+}
+
+GatherSettings rough_gather_settings(GatherSettings gather) {
+    gather.theta_strata = std::max(2, gather.theta_strata / 4);
+    gather.phi_strata = std::max(4, gather.phi_strata / 4);
+    return gather;
 }
 
 Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records) {

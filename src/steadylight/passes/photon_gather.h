@@ -50,6 +50,9 @@ std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const F
                                                                         const IrradiancePhotons& photons, float max_radius,
                                                                         const GatherSettings& gather);
 
+/// Gather settings with a sixteenth of the rays, for points that count little.
+GatherSettings rough_gather_settings(GatherSettings gather);
+
 /// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
 /// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.
 Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,

@@ -12,6 +12,8 @@ namespace steadylight {
 namespace {
 
 constexpr int tile_size = 16;
+/// Delta bounces up to this depth follow every lobe (glass: reflection and refraction).
+constexpr int max_split_depth = 2;
 
 /// The lighting at a pixel split the way the EXR's layers are.
 struct Components {
@@ -116,10 +118,32 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
     // indirect light (emission is not counted twice). Mirrors and glass see emitters directly.
     if (!bsdf.is_delta()) c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
     if (depth >= m_settings.max_specular_depth) return c;
+    // What the bounce sees keeps this camera ray's light strata: each camera ray still reaches
+    // at most one diffuse point along each branch.
+    const auto follow = [&](const Bounce& bounce, float share) {
+        PixelSample branch = pixel;
+        branch.minor_branch = pixel.minor_branch || share < 0.5f;
+        c.specular += bounce.sample.weight * share * shade(bounce.ray, depth + 1, bounce.sample.is_delta, branch, strata, rng).sum();
+    };
     const float u_lobe = rng.next_float();
-    const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
-    if (!bounce) return c;
-    c.specular = bounce->sample.weight * shade(bounce->ray, depth + 1, bounce->sample.is_delta, pixel, LightStrata{}, rng).sum();
+    const Vec2 u = rng.next_vec2();
+    if (bsdf.is_delta() && depth < max_split_depth) {
+        // Glass both reflects and refracts: near the camera both are followed, each weighted by
+        // the probability sample() gives it (the first lobe for u_lobe 0, the last just below
+        // 1), rather than one chosen at random, whose noise would show through every glass
+        // object. A single lobe (a mirror, total internal reflection) is followed once.
+        const std::optional<Bounce> first = sample_bounce(bsdf, surface, ray.d, u, 0.0f, TransportMode::radiance);
+        if (first && first->sample.pdf < 1) {
+            follow(*first, first->sample.pdf);
+            const std::optional<Bounce> last = sample_bounce(bsdf, surface, ray.d, u, 0x1.fffffep-1f, TransportMode::radiance);
+            if (last) follow(*last, last->sample.pdf);
+        } else if (first) {
+            follow(*first, 1);
+        }
+        return c;
+    }
+    const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, u, u_lobe, TransportMode::radiance);
+    if (bounce) follow(*bounce, 1);
     return c;
 }
 

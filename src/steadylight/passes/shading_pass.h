@@ -71,6 +71,9 @@ struct PixelSample {
     PixelMemo* memo = nullptr;
     PixelMemo* caustic_memo = nullptr;
     float reach = 0;
+    /// Reached through the less likely of two lobes both followed (glass's reflection): it counts
+    /// for little, so where no record reaches a rough gather will do.
+    bool minor_branch = false;
 };
 
 /// The values `compute()` returns at (sp, n), or those an earlier camera ray of the same pixel
