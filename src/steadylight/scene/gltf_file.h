@@ -22,6 +22,7 @@ inline std::string describe(const std::string& kind, size_t index, const std::st
 struct GltfFile {
     std::string path;
     tinygltf::Model model;
+    int image_base = 0;  // SceneDesc::images index of the file's image 0
     mutable std::set<std::string> warned;
 
     /// Throws InputError at "<path>: <element>".
