@@ -125,7 +125,7 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
         if (!(u_survive < survive)) return;
         path.power *= bs->weight / survive;
         // A bounce off a coat's or a metal's glossy lobe keeps a path caustic; one drawn from a
-        // diffuse base ends that (docs/materials.md, "Photons").
+        // diffuse base ends that (docs/materials.md, "The photon method").
         path.specular_path = (path.bounce == 0 || path.specular_path) && !bs->diffuse;
         path.ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
     }
