@@ -157,15 +157,16 @@ def build_crate(mat):
         key(crate, "rotation_euler", frame, (0, 0, math.radians(degrees)))
 
 
-def build_camera():
-    """A camera in the outer corner of the elbow, which sees down both arms, 320 x 240, fov_y 60."""
+def build_camera(location=(5.7, 0.3, 1.8), target=(2.8, 3.2, 0.6), fov_y_deg=60):
+    """A camera at `location` looking at `target` (by default in the outer corner of the elbow,
+    which sees down both arms), fov_y with a vertical sensor fit."""
     data = bpy.data.cameras.new("Camera")
     data.sensor_fit = "VERTICAL"
-    data.angle_y = math.radians(60)
+    data.angle_y = math.radians(fov_y_deg)
     camera = bpy.data.objects.new("Camera", data)
     bpy.context.scene.collection.objects.link(camera)
-    camera.location = (5.7, 0.3, 1.8)
-    direction = Vector((2.8, 3.2, 0.6)) - camera.location
+    camera.location = location
+    direction = Vector(target) - camera.location
     camera.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
     bpy.context.scene.camera = camera
 

@@ -26,7 +26,6 @@ import os
 import sys
 
 import bpy
-from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_blender_scene as base  # noqa: E402  (Blender's --python puts nothing on sys.path)
@@ -210,17 +209,6 @@ def build_crate(m):
         base.key(crate, "rotation_euler", frame, (0, 0, math.radians(degrees)))
 
 
-def build_camera():
-    data = bpy.data.cameras.new("Camera")
-    data.sensor_fit = "VERTICAL"
-    data.angle_y = math.radians(55)
-    camera = bpy.data.objects.new("Camera", data)
-    bpy.context.scene.collection.objects.link(camera)
-    camera.location = (4.7, 0.3, 1.7)
-    camera.rotation_euler = (Vector((1.6, 3.0, 0.7)) - camera.location).to_track_quat("-Z", "Y").to_euler()
-    bpy.context.scene.camera = camera
-
-
 def build_scene():
     scene = base.set_up_scene(FRAME_END, RESOLUTION)
     for img in list(bpy.data.images):
@@ -229,7 +217,7 @@ def build_scene():
     build_room(m)
     build_furniture(m)
     build_crate(m)
-    build_camera()
+    base.build_camera(location=(4.7, 0.3, 1.7), target=(1.6, 3.0, 0.7), fov_y_deg=55)
     scene.frame_set(0)
 
 

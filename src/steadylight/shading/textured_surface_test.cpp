@@ -87,5 +87,36 @@ TEST(TexturedSurface, NormalMapTiltsTheBsdfFrameNotTheInterpolatedNormal) {
     EXPECT_NEAR(sp.nm.z, 0, 0.01f);
 }
 
+// An emissive texture tints the emission where a ray meets the light and where a light sample
+// lands: the black half of a black-and-white light emits nothing.
+TEST(TexturedSurface, EmissiveTextureTintsTheLight) {
+    MaterialDesc material{.type = MaterialType::pbr, .reflectance = {0, 0, 0},
+                          .emissive_texture = {.image = 0, .filter = TextureFilter::nearest}};
+    SceneDesc desc = quad_with_texture(material, {.name = "half", .width = 2, .height = 1,
+                                                  .rgba = {255, 255, 255, 255, 0, 0, 0, 255}});
+    desc.objects[0].emission = {2, 2, 2};
+    const Scene scene(std::move(desc));
+    const PreparedFrame prepared(scene, 0);
+    const FrameContext& context = prepared.context();
+    for (const float x : {-0.5f, 0.5f}) {
+        const Ray ray{{x, 5, 0}, {0, -1, 0}};
+        const std::optional<Hit> hit = context.tracer.intersect(ray);
+        ASSERT_TRUE(hit);
+        const SurfacePoint sp = make_surface_point(scene, context.frame, ray, *hit);
+        EXPECT_NEAR(emitted_radiance_at(context, sp, -ray.d).r, x < 0 ? 2.0f : 0.0f, 1e-6f);
+    }
+    // Light samples seen from above: Li is 2 or 0 as the point lands on the white or black half.
+    int white = 0, black = 0;
+    for (int i = 0; i < 64; ++i) {
+        const std::optional<LightSample> s = context.lights.sample({0, 1, 0}, 0.5f, {(float(i) + 0.5f) / 64, 0.37f});
+        if (!s) { ++black; continue; }  // a black sample is no sample
+        EXPECT_NEAR(s->Li.g, 2.0f, 1e-6f);
+        EXPECT_LT(s->p.x, 0.0f);
+        ++white;
+    }
+    EXPECT_GT(white, 10);
+    EXPECT_GT(black, 10);
+}
+
 }  // namespace
 }  // namespace steadylight
