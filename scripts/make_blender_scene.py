@@ -18,8 +18,8 @@ The scene (Blender's Z-up metres; the exporter turns it into glTF's Y-up):
 - a camera in the elbow's outer corner, which sees down both arms: 320 x 240, fov_y 60 degrees,
   with a vertical sensor fit, so glTF's yfov is the camera's angle.
 
-Every surface is a Principled BSDF with Metallic 0, Roughness 1 and Specular 0, which is what
-steadylight renders (Lambert with the base colour); emitters have a black base colour so that they
+Every surface is a Principled BSDF with Metallic 0, Roughness 1 and Specular 0, which steadylight
+renders as Lambert with the base colour under a coat that reflects only at grazing angles; emitters have a black base colour so that they
 reflect nothing in either renderer. Cycles still shades Principled's diffuse lobe with Disney's
 retro-reflection at Roughness 1; scripts/cycles_reference.py --lambert swaps in a Diffuse BSDF.
 
@@ -61,7 +61,7 @@ def clear_scene():
 
 
 def principled(name, colour, emission=None, strength=1.0):
-    """A Principled BSDF material that steadylight renders as it is: Lambert, maybe emitting."""
+    """A Principled BSDF material: a rough dielectric with Specular 0, maybe emitting."""
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     bsdf = material.node_tree.nodes["Principled BSDF"]
