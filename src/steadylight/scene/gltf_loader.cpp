@@ -51,14 +51,21 @@ std::string trim_newlines(std::string s) {
 }
 
 /// Decodes an embedded or external PNG or JPEG with stb_image into 8-bit RGBA (tinygltf reads
-/// the bytes, from the buffer view, the data URI or the file beside the glTF).
+/// the bytes, from the buffer view, the data URI or the file beside the glTF). An image stb_image
+/// cannot read (KTX2, WebP, a broken file) stays empty: textures using it are ignored, with a
+/// warning (gltf_materials.cpp).
 bool decode_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                   const unsigned char* bytes, int size, void*) {
+    if (!bytes || size <= 0) {
+        if (err) *err += fmt::format("image {} \"{}\": no data\n", index, image->uri);
+        return false;
+    }
     int width = 0, height = 0, channels = 0;
     stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
     if (!pixels) {
-        if (err) *err += fmt::format("image {} \"{}\": cannot decode it ({})\n", index, image->name, stbi_failure_reason());
-        return false;
+        image->image.clear();
+        image->width = image->height = 0;
+        return true;
     }
     image->width = width;
     image->height = height;
@@ -356,13 +363,35 @@ void SceneWalker::add_light(const tinygltf::Node& node, const std::vector<Animat
     m_desc.point_lights.push_back(desc);
 }
 
-/// Every decoded image of the file, in file order from `file.image_base` on.
+/// A URI with its %XX escapes decoded (glTF URIs are RFC 3986; "my%20wood.png").
+std::string decode_uri(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+/// Every image of the file, in file order from `file.image_base` on; one that could not be
+/// decoded as a white texel, which no texture uses (gltf_materials.cpp ignores those textures).
 void append_images(const GltfFile& file, SceneDesc& desc) {
     for (size_t i = 0; i < file.model.images.size(); ++i) {
         const tinygltf::Image& image = file.model.images[i];
-        if (image.component != 4 || image.bits != 8 || image.width < 1 || image.height < 1)
-            file.fail(describe("image", i, image.name), "image was not decoded");
-        desc.images.push_back({.name = image.name.empty() ? image.uri : image.name,
+        const std::string name = image.name.empty() ? image.uri : image.name;
+        // tinygltf only warns about a missing image file; it is an error, as a missing buffer is.
+        if (!image.uri.empty() && !image.uri.starts_with("data:") &&
+            !std::filesystem::exists(std::filesystem::path(file.path).parent_path() / decode_uri(image.uri)))
+            file.fail(describe("image", i, image.name), "image file \"" + image.uri + "\" not found");
+        if (!is_decoded(image)) {
+            desc.images.push_back({.name = name, .width = 1, .height = 1, .rgba = {255, 255, 255, 255}});
+            continue;
+        }
+        desc.images.push_back({.name = name,
                                .width = image.width,
                                .height = image.height,
                                .rgba = image.image});

@@ -54,8 +54,8 @@ TextureRef texture_ref(const GltfFile& file, int texture, int texcoord, const ti
     const tinygltf::Model& model = file.model;
     if (size_t(texture) >= model.textures.size()) file.fail(where, "texture index out of range");
     const tinygltf::Texture& t = model.textures[size_t(texture)];
-    if (t.source < 0 || size_t(t.source) >= model.images.size()) {
-        file.warn_once("textures without a PNG or JPEG source are ignored", where);
+    if (t.source < 0 || size_t(t.source) >= model.images.size() || !is_decoded(model.images[size_t(t.source)])) {
+        file.warn_once("textures without a PNG or JPEG image are ignored", where);
         return ref;
     }
     ref.image = file.image_base + t.source;

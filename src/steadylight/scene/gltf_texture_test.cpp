@@ -105,6 +105,12 @@ TEST_F(GltfTexture, ExternalPngAndJpegAreDecodedToRgba) {
     EXPECT_EQ(desc.images[1].rgba[3], 255);       // opaque alpha added
 }
 
+TEST_F(GltfTexture, PercentEncodedImageUriIsFound) {
+    fs::copy_file(m_dir / "tex.png", m_dir / "my tex.png");
+    const SceneDesc desc = load(R"({"uri": "my%20tex.png"}, {"uri": "tex.jpg"})");
+    EXPECT_EQ(desc.images.at(0).width, 2);
+}
+
 TEST_F(GltfTexture, EmbeddedDataUriPngGivesTheSamePixels) {
     const SceneDesc desc = load(R"({"uri": "data:image/png;base64,)" + base64(read_file(m_dir / "tex.png")) +
                                 R"("}, {"uri": "tex.jpg"})");
@@ -151,6 +157,14 @@ TEST_F(GltfTexture, MeshReadsTexcoordsColoursAndGeneratesTangents) {
     ASSERT_EQ(mesh.tangents.size(), 3u);
     EXPECT_NEAR(mesh.tangents[0][0], 1, 1e-6f);
     EXPECT_NEAR(mesh.tangents[0][3], 1, 1e-6f);
+}
+
+TEST_F(GltfTexture, UndecodableImageLeavesItsTexturesOut) {
+    const SceneDesc desc = load(R"({"uri": "data:image/png;base64,)" + base64("not a png at all") +
+                                R"("}, {"uri": "tex.jpg"})");
+    ASSERT_EQ(desc.images.size(), 2u);  // the indices of the others stay as they were
+    EXPECT_FALSE(desc.materials.at(0).base_color_texture.is_set());
+    EXPECT_EQ(desc.materials.at(0).normal_texture.image, 1);
 }
 
 TEST_F(GltfTexture, MissingExternalImageIsAnInputError) {
