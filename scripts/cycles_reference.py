@@ -3,7 +3,12 @@ independent check of steadylight's path tracer. Not part of CI: it needs Blender
 
 Run headless:
   blender -b --factory-startup --python scripts/cycles_reference.py -- \
-      --frame 0 --samples 1024 --out /tmp/cycles_0000.exr [--filter box] [--lambert] [--seed N]
+      --frame 0 --samples 1024 --out /tmp/cycles_0000.exr [--filter box] [--lambert] [--seed N] \
+      [--scene room|textured] [--size WxH]
+
+`--scene textured` renders the textured room of scripts/make_blender_textured_room.py instead
+(no --lambert there: its materials are textured and glossy on purpose); `--size` overrides the
+scene's 320 x 240.
 
 The scene is built afresh by make_blender_scene.build_scene(), the same code that exports
 scenes/blender_room.glb, so both renderers see one scene. Cycles is set up to compute the same
@@ -30,6 +35,7 @@ import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_blender_scene  # noqa: E402  (Blender runs this file as a script, not a package)
+import make_blender_textured_room  # noqa: E402
 
 MAX_BOUNCES = 64
 
@@ -44,6 +50,8 @@ def parse_args(argv):
     parser.add_argument("--lambert", action="store_true", help="Diffuse BSDF instead of Principled")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--threads", type=int, default=0, help="0: Blender's choice (all cores)")
+    parser.add_argument("--scene", choices=("room", "textured"), default="room")
+    parser.add_argument("--size", help="WxH, instead of the scene's resolution")
     return parser.parse_args(argv[argv.index("--") + 1:] if "--" in argv else [])
 
 
@@ -106,8 +114,12 @@ def set_up_cycles(scene, args):
 
 def main(argv):
     args = parse_args(argv)
-    make_blender_scene.build_scene()
+    if args.scene == "textured" and args.lambert:
+        sys.exit("--lambert is for the untextured room only")
+    (make_blender_textured_room if args.scene == "textured" else make_blender_scene).build_scene()
     scene = bpy.context.scene
+    if args.size:
+        scene.render.resolution_x, scene.render.resolution_y = (int(v) for v in args.size.split("x"))
     if args.lambert:
         for material in bpy.data.materials:
             use_lambert(material)

@@ -18,8 +18,8 @@ The scene (Blender's Z-up metres; the exporter turns it into glTF's Y-up):
 - a camera in the elbow's outer corner, which sees down both arms: 320 x 240, fov_y 60 degrees,
   with a vertical sensor fit, so glTF's yfov is the camera's angle.
 
-Every surface is a Principled BSDF with Metallic 0, Roughness 1 and Specular 0, which is what
-steadylight renders (Lambert with the base colour); emitters have a black base colour so that they
+Every surface is a Principled BSDF with Metallic 0, Roughness 1 and Specular 0, which steadylight
+renders as Lambert with the base colour under a coat that reflects only at grazing angles; emitters have a black base colour so that they
 reflect nothing in either renderer. Cycles still shades Principled's diffuse lobe with Disney's
 retro-reflection at Roughness 1; scripts/cycles_reference.py --lambert swaps in a Diffuse BSDF.
 
@@ -61,7 +61,7 @@ def clear_scene():
 
 
 def principled(name, colour, emission=None, strength=1.0):
-    """A Principled BSDF material that steadylight renders as it is: Lambert, maybe emitting."""
+    """A Principled BSDF material: a rough dielectric with Specular 0, maybe emitting."""
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     bsdf = material.node_tree.nodes["Principled BSDF"]
@@ -157,28 +157,35 @@ def build_crate(mat):
         key(crate, "rotation_euler", frame, (0, 0, math.radians(degrees)))
 
 
-def build_camera():
-    """A camera in the outer corner of the elbow, which sees down both arms, 320 x 240, fov_y 60."""
+def build_camera(location=(5.7, 0.3, 1.8), target=(2.8, 3.2, 0.6), fov_y_deg=60):
+    """A camera at `location` looking at `target` (by default in the outer corner of the elbow,
+    which sees down both arms), fov_y with a vertical sensor fit."""
     data = bpy.data.cameras.new("Camera")
     data.sensor_fit = "VERTICAL"
-    data.angle_y = math.radians(60)
+    data.angle_y = math.radians(fov_y_deg)
     camera = bpy.data.objects.new("Camera", data)
     bpy.context.scene.collection.objects.link(camera)
-    camera.location = (5.7, 0.3, 1.8)
-    direction = Vector((2.8, 3.2, 0.6)) - camera.location
+    camera.location = location
+    direction = Vector(target) - camera.location
     camera.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
     bpy.context.scene.camera = camera
 
 
-def build_scene():
-    """The whole scene in the current Blender file, at frame 0."""
+def set_up_scene(frame_end, resolution):
+    """Clears the startup file and sets the frame rate (FPS), the frames 0..frame_end and the resolution."""
     clear_scene()
     scene = bpy.context.scene
     scene.render.fps, scene.render.fps_base = FPS, 1.0
-    scene.frame_start, scene.frame_end = 0, FRAME_END
-    scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
+    scene.frame_start, scene.frame_end = 0, frame_end
+    scene.render.resolution_x, scene.render.resolution_y = resolution
     scene.render.resolution_percentage = 100
     scene.render.pixel_aspect_x = scene.render.pixel_aspect_y = 1.0
+    return scene
+
+
+def build_scene():
+    """The whole scene in the current Blender file, at frame 0."""
+    scene = set_up_scene(FRAME_END, RESOLUTION)
     mat = {name: principled(name, colour) for name, colour in COLOURS.items()}
     mat["Lamp"] = principled("Lamp", (0, 0, 0), emission=(1.0, 0.9, 0.75), strength=LAMP_STRENGTH)
     build_room(mat)
@@ -189,21 +196,25 @@ def build_scene():
     scene.frame_set(0)
 
 
-def export_glb(path):
+def export_glb(path, textures=False):
+    """A GLB, +Y up, with cameras and animations sampled every frame; texture coordinates (and
+    the images, packed) only with `textures`; no tangents (steadylight makes them)."""
     bpy.ops.export_scene.gltf(
         filepath=path, export_format="GLB", export_yup=True, export_apply=True,
         export_cameras=True, export_lights=False, export_extras=False,
         export_animations=True, export_force_sampling=True, export_frame_range=True,
         export_frame_step=1, export_optimize_animation_size=False,
-        export_texcoords=False, export_normals=True, export_colors=False)
+        export_texcoords=textures, export_normals=True, export_tangents=False, export_colors=False)
 
 
-def main(argv):
+def main(argv, build=build_scene, textures=False, usage=__doc__):
+    """Builds the scene with `build`, exports it to the path after `--`, and saves the .blend too
+    with `--blend PATH`."""
     args = argv[argv.index("--") + 1:] if "--" in argv else []
     if len(args) not in (1, 3) or (len(args) == 3 and args[1] != "--blend"):
-        sys.exit(__doc__)
-    build_scene()
-    export_glb(args[0])
+        sys.exit(usage)
+    build()
+    export_glb(args[0], textures)
     if len(args) == 3:
         bpy.ops.wm.save_as_mainfile(filepath=args[2])
 

@@ -93,7 +93,7 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         // Add emitted light (as bright as it is at this frame), weighted against light sampling
         // at the previous vertex.
         if (!is_black(emission)) {
-            const Rgb Le = emitted_radiance(context.scene.object(sp.object), emission, sp.ng, -ray.d);
+            const Rgb Le = emitted_radiance_at(context, sp, -ray.d);
             if (specular_bounce) {
                 L += beta * Le;
             } else {
@@ -104,8 +104,9 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         if (depth == settings.max_depth) break;
 
         // Sample direct light, then continue the path by sampling the BSDF.
-        const Bsdf& bsdf = context.bsdf_of(sp.object);
-        const Frame frame = Frame::from_normal(sp.ns);
+        const SurfaceBsdf surface_bsdf = bsdf_at(context, sp);
+        const Bsdf& bsdf = *surface_bsdf;
+        const Frame frame = Frame::from_normal(sp.nm);
         const Vec3 wo = frame.to_local(-ray.d);
         if (!bsdf.is_delta()) L += beta * estimate_direct(context, sp, frame, bsdf, wo, rng, counts);
         const float u_lobe = rng.next_float();

@@ -38,7 +38,9 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
         })[0];
     };
     ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
-        return shade_frame(context, settings.shading, traced.maps.caustic, indirect);
+        return shade_frame(context, settings.shading, traced.maps.caustic, indirect, [&](const Ray& ray) {
+            return gather_from_photons(context, irradiance_photons, max_radius, Visibility::everything, ray).L;
+        });
     });
     stats.caustics_s = shaded.caustic_cpu_s;
     stats.fallback_gathers = fallbacks;

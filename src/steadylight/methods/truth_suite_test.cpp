@@ -38,6 +38,14 @@ constexpr SceneTolerance tolerances[] = {
     // 320x240), with 4x the photons too; finer cache records help a little (1.6%). Allowed 3%
     // until it is found (see the README's truth-suite figures).
     {"blender_room", 0.11, 0.04, 0, 0.03},
+    // Textures, rough plastics, metals, a normal map and a cut-out screen (docs/materials.md).
+    // The photon methods are 5.8-6.6% too bright here (per pixel 0.139, blocks 0.083): the same
+    // 2.6% as blender_room without the coats and the normal map, about +2% from the coats (the
+    // cache keeps irradiance, not where it comes from, and a coat takes more of grazing light
+    // than of the average: docs/materials.md) and +0.6% from the normal map (indirect light
+    // ignores it).
+    // Allowed 8% until those are fixed (docs/truth-suite.md, "The textured Blender room").
+    {"blender_textured", 0.17, 0.11, 0, 0.08},
 };
 
 struct Case {

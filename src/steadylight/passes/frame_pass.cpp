@@ -42,7 +42,8 @@ struct IndirectParts {
 /// weighted so that the pixel's average comes out right.
 void fill_layers(const FrameContext& context, const IrradianceCache& static_cache, const SurfacePoint& sp, Vec3 n,
                  const PixelSample& pixel, const IndirectParts& parts, ExtraLayers& extra) {
-    const Rgb albedo_over_pi = context.bsdf_of(sp.object).diffuse_reflectance() * inv_pi;
+    // The layers show the base's albedo as seen head-on: the shading pass's own wo is not here.
+    const Rgb albedo_over_pi = bsdf_at(context, sp)->diffuse_reflectance({0, 0, 1}) * inv_pi;
     // Dynamic objects always take L_y: shown as the largest influence, and in their own mask.
     // The influence is infinite where there is no static indirect light; every layer stays
     // finite (a compositor's blur would spread an inf), and far below the half-float range.
@@ -115,7 +116,9 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
         return L_y * weight + L_t * (1 - weight);
     };
     ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
-        return shade_frame(context, photon.shading, photons.caustic, indirect);
+        return shade_frame(context, photon.shading, photons.caustic, indirect, [&](const Ray& ray) {
+            return gather_from_photons(context, irradiance, max_radius, Visibility::everything, ray).L;
+        });
     });
     stats.caustics_s = shaded.caustic_cpu_s;
     stats.fallback_gathers = fallbacks;

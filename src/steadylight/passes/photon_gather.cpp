@@ -11,6 +11,7 @@ SurfacePoint face_towards(SurfacePoint sp, Vec3 d) {
     if (dot(sp.ng, d) > 0) {
         sp.ng = -sp.ng;
         sp.ns = -sp.ns;
+        sp.nm = -sp.nm;
     }
     return sp;
 }
@@ -24,18 +25,31 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         if (!hit) return result;
         if (depth == 0) result.distance = hit->t;
         const SurfacePoint surface = make_surface_point(context.scene, context.frame, ray, *hit);
-        const Bsdf& bsdf = context.bsdf_of(surface.object);
-        if (bsdf.is_diffuse()) {
-            const std::optional<Rgb> E = photons.lookup(surface.p, face_towards(surface, ray.d).ng, max_radius);
-            if (E) result.L = beta * bsdf.diffuse_reflectance() * *E * inv_pi;
-            return result;
+        const SurfaceBsdf surface_bsdf = bsdf_at(context, surface);
+        const Bsdf* bsdf = &*surface_bsdf;
+        std::unique_ptr<Bsdf> coat;
+        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(surface.object)));
+        if (bsdf->is_diffuse()) {
+            const SurfacePoint facing = face_towards(surface, ray.d);
+            const std::optional<Rgb> E = photons.lookup(surface.p, facing.ng, max_radius);
+            const Vec3 wo = Frame::from_normal(facing.nm).to_local(-ray.d);
+            if (E) result.L += beta * bsdf->diffuse_reflectance(wo) * *E * inv_pi;
+            // Go on along the coat's reflection, kept by Russian roulette (it is a few percent).
+            coat = bsdf->non_diffuse_part();
+            if (!coat) return result;
+            bsdf = coat.get();
         }
         // Follow specular and glossy surfaces along one deterministic sample.
-        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(surface.object)));
         const float u_lobe = rng.next_float();
-        const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
+        const std::optional<Bounce> bounce = sample_bounce(*bsdf, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
         if (!bounce) return result;
-        beta *= bounce->sample.weight;
+        Rgb weight = bounce->sample.weight;
+        if (coat) {
+            const float survive = std::min(1.0f, max_component(weight));
+            if (!(rng.next_float() < survive)) return result;
+            weight = weight / survive;
+        }
+        beta *= weight;
         ray = bounce->ray;
     }
     return result;
@@ -50,8 +64,11 @@ std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility
         if (!hit) return std::nullopt;
         distance += hit->t;
         const SurfacePoint surface = make_surface_point(context.scene, context.frame, ray, *hit);
-        const Bsdf& bsdf = context.bsdf_of(surface.object);
+        const SurfaceBsdf surface_bsdf = bsdf_at(context, surface);
+        const Bsdf& bsdf = *surface_bsdf;
         if (bsdf.is_diffuse()) {
+            // The record's normal is the interpolated one, never the normal map's: a normal map
+            // would otherwise split the cache into records per bump (docs/materials.md).
             const SurfacePoint sp = face_towards(surface, ray.d);
             return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(distance), sp.object};
         }

@@ -20,6 +20,11 @@ void add_geometry(Hasher& h, const Geometry& geometry) {
         for (const Vec3& p : mesh->positions) h.add(p);
         for (const Vec3& n : mesh->normals) h.add(n);
         for (const int index : mesh->indices) h.add(index);
+        for (const auto* uv : {&mesh->uv0, &mesh->uv1})
+            for (const Vec2& t : *uv) h.add(t.x), h.add(t.y);
+        for (const auto* values : {&mesh->colors, &mesh->tangents})
+            for (const Rgba& c : *values)
+                for (const float x : c) h.add(x);
     } else {
         h.add(std::get<Sphere>(geometry).center);
         h.add(std::get<Sphere>(geometry).radius);
@@ -43,7 +48,7 @@ std::vector<int> distinct_views(const Scene& scene, const Segment& segment) {
 
 uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const PhotonMappingSettings& settings) {
     Hasher h;
-    h.add("steadylight static cache 2");  // change when the algorithm changes what it computes
+    h.add("steadylight static cache 3");  // change when the algorithm changes what it computes
     const FrameState state = scene.evaluate(segment.first);
     for (const int i : scene.static_objects()) {
         const ObjectDesc& object = scene.object(i);
@@ -51,6 +56,16 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         add_geometry(h, object.geometry);
         const MaterialDesc& m = scene.desc().materials[size_t(object.material)];
         h.add(int(m.type)), h.add(m.reflectance), h.add(m.transmittance), h.add(m.ior), h.add(m.roughness);
+        h.add(m.metallic), h.add(m.specular), h.add(m.specular_color), h.add(m.alpha), h.add(int(m.alpha_mode));
+        h.add(m.alpha_cutoff), h.add(m.normal_scale);
+        for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture}) {
+            h.add(t->image), h.add(t->texcoord), h.add(int(t->wrap_s)), h.add(int(t->wrap_t)), h.add(int(t->filter));
+            for (const float x : {t->offset.x, t->offset.y, t->rotation, t->scale.x, t->scale.y}) h.add(x);
+            if (t->is_set()) {
+                const TextureImage& image = scene.desc().images[size_t(t->image)];
+                h.add(image.width), h.add(image.height), h.add(image.rgba.data(), image.rgba.size());
+            }
+        }
         // The emission at the segment's start: it is constant within the segment (segments split
         // where a light is switched or dimmed), so a cache of the light off never serves it on.
         h.add(state.emission[size_t(i)]), h.add(object.two_sided_emission);

@@ -34,8 +34,8 @@ struct LightStrata {
 class Shader {
 public:
     Shader(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-           const IndirectIrradiance& indirect)
-        : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect) {}
+           const IndirectIrradiance& indirect, const ReflectedRadiance& reflected)
+        : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect), m_reflected(reflected) {}
 
     Components shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel, const LightStrata& strata,
                      Pcg32& rng) const;
@@ -44,6 +44,7 @@ public:
 private:
     Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
                      Pcg32& rng) const;
+    Rgb trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const;
     void shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
                        const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const;
 
@@ -51,6 +52,7 @@ private:
     const ShadingSettings& m_settings;
     const PhotonMap& m_caustic;
     const IndirectIrradiance& m_indirect;
+    const ReflectedRadiance& m_reflected;
     mutable std::atomic<long> m_caustic_ns = 0;
 };
 
@@ -79,7 +81,8 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
 
 void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
                            const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const {
-    const Rgb albedo_over_pi = bsdf.diffuse_reflectance() * inv_pi;
+    // Textures multiply here, after the cache's interpolation: they are never blurred by it.
+    const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
     c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
@@ -88,6 +91,15 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
         return PixelMemo::Values{m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate)};
     })[0];
     m_caustic_ns += long(caustic_time.elapsed_s() * 1e9);
+}
+
+/// The indirect light a coat over a diffuse base reflects: one sampled bounce, whose radiance
+/// the photons give (its direct light came with the BSDF's own light sampling).
+Rgb Shader::trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const {
+    const float u_lobe = rng.next_float();
+    const std::optional<Bounce> bounce = sample_bounce(coat, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
+    if (!bounce) return {};
+    return bounce->sample.weight * m_reflected(bounce->ray);
 }
 
 Components Shader::shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel,
@@ -99,11 +111,11 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
     // An emitter seen by the camera is direct light (as bright as it is at this frame); seen
     // through a mirror the caller files it under specular.
     const Rgb Le = m_context.frame.emission[size_t(surface.object)];
-    if (count_emission && !is_black(Le))
-        c.direct += emitted_radiance(m_context.scene.object(surface.object), Le, surface.ng, -ray.d);
+    if (count_emission && !is_black(Le)) c.direct += emitted_radiance_at(m_context, surface, -ray.d);
     const SurfacePoint sp = face_towards(surface, ray.d);
-    const Bsdf& bsdf = m_context.bsdf_of(sp.object);
-    const Frame frame = Frame::from_normal(sp.ns);
+    const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
+    const Bsdf& bsdf = *surface_bsdf;
+    const Frame frame = Frame::from_normal(sp.nm);
     const Vec3 wo = frame.to_local(-ray.d);
     if (bsdf.is_diffuse()) {
         PixelSample at = pixel;
@@ -112,6 +124,7 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
         at.reach = 2 * m_context.frame.camera.pixel_footprint(hit->t);
         if (depth > 0) at.memo = at.caustic_memo = nullptr;
         shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, rng, c);
+        if (const std::unique_ptr<Bsdf> coat = bsdf.non_diffuse_part()) c.specular = trace_coat(*coat, surface, ray, rng);
         return c;
     }
     // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
@@ -163,12 +176,12 @@ void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
 }
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-                        const IndirectIrradiance& indirect) {
+                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected) {
     const Camera& camera = context.frame.camera;
     ShadedFrame out;
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular}) *image = Image(camera.width, camera.height);
     for (Image& image : out.extra) image = Image(camera.width, camera.height);
-    const Shader shader(context, settings, caustic, indirect);
+    const Shader shader(context, settings, caustic, indirect, reflected);
     const int n = settings.samples_per_pixel;
     const float inv_n = 1.0f / float(n);
     parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {

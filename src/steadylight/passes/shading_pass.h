@@ -92,6 +92,11 @@ PixelMemo::Values remembered(PixelMemo* memo, float reach, const SurfacePoint& s
 /// its layers there (each ray's values are averaged over the pixel's rays).
 using IndirectIrradiance = std::function<Rgb(const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra)>;
 
+/// Radiance arriving along a ray that a coat over a diffuse base reflects, read from the
+/// photons (photon_gather.h gather_from_photons): the coat's reflection of indirect light
+/// (docs/materials.md, "The photon method").
+using ReflectedRadiance = std::function<Rgb(const Ray& ray)>;
+
 struct ShadedFrame {
     Image beauty, direct, indirect, caustic, specular;
     std::array<Image, max_extra_layers> extra;
@@ -99,7 +104,7 @@ struct ShadedFrame {
 };
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-                        const IndirectIrradiance& indirect);
+                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected);
 
 /// Moves the shading pass's common layers into a frame that has members of the same names.
 template <class FrameImages>

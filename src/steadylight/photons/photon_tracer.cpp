@@ -121,23 +121,32 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
             path.dynamic = true;
         }
 
-        const Bsdf& bsdf = m_context.bsdf_of(sp.object);
+        const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
+        const Bsdf* bsdf = &*surface_bsdf;
+        std::unique_ptr<Bsdf> glossy_part;
         const Vec3 arrival_n = dot(sp.ng, path.ray.d) < 0 ? sp.ng : -sp.ng;
-        if (bsdf.is_diffuse()) {
+        if (bsdf->is_diffuse()) {
             store(path, {sp.p, arrival_n, -path.ray.d, path.power, uint16_t(path.bounce)}, out);
-            if (m_kind == MapKind::caustic) return;  // a caustic path ends at its first diffuse hit
+            // A caustic path ends at its first diffuse hit, except that one arriving straight
+            // from a light goes on along a coat's glossy lobes (light a varnished floor reflects).
+            if (m_kind == MapKind::caustic) {
+                if (path.bounce > 0 || !(glossy_part = bsdf->non_diffuse_part())) return;
+                bsdf = glossy_part.get();
+            }
         }
 
         // Scatter, or be absorbed: survive with the probability of the scattered power.
-        const Frame frame = Frame::from_normal(sp.ns);
+        const Frame frame = Frame::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
-        const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
-                                                         TransportMode::importance);
+        const std::optional<BsdfSample> bs = bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
+                                                          TransportMode::importance);
         if (!bs) return;
         const float survive = std::min(1.0f, max_component(bs->weight));
         if (!(u_survive < survive)) return;
         path.power *= bs->weight / survive;
-        path.specular_path = (path.bounce == 0 || path.specular_path) && !bsdf.is_diffuse();
+        // A bounce off a coat's or a metal's glossy lobe keeps a path caustic; one drawn from a
+        // diffuse base ends that (docs/materials.md, "The photon method").
+        path.specular_path = (path.bounce == 0 || path.specular_path) && !bs->diffuse;
         path.ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
     }
 }
@@ -171,8 +180,13 @@ std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long coun
 
 /// Caustic paths need a specular or glossy surface; without one the caustic map stays empty.
 bool has_non_diffuse_surface(const FrameContext& context) {
-    for (int object = 0; object < int(context.scene.objects().size()); ++object)
-        if (!context.bsdf_of(object).is_diffuse()) return true;
+    for (int object = 0; object < int(context.scene.objects().size()); ++object) {
+        const Bsdf& bsdf = context.bsdf_of(object);
+        if (!bsdf.is_diffuse() || bsdf.non_diffuse_part()) return true;
+        // A textured material may be metallic or coated somewhere even if its factors say not.
+        const MaterialDesc& m = context.scene.desc().materials[size_t(context.scene.object(object).material)];
+        if (m.type == MaterialType::pbr && m.metallic_roughness_texture.is_set() && m.metallic > 0) return true;
+    }
     return false;
 }
 

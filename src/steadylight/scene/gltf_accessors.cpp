@@ -159,6 +159,34 @@ std::vector<Quat> read_quats(const GltfFile& file, int index, const std::string&
     return values;
 }
 
+std::vector<Vec2> read_texcoords(const GltfFile& file, int index, const std::string& user) {
+    const AccessorView view =
+        view_typed(file, index, user, TINYGLTF_TYPE_VEC2,
+                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                   "VEC2 of floats or normalised unsigned bytes or shorts");
+    if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !view.normalized)
+        file.fail(user, "accessor " + std::to_string(index) + ": integer texture coordinates must be normalized");
+    std::vector<Vec2> values(view.count);
+    for (size_t i = 0; i < view.count; ++i) values[i] = {read_component(view, i, 0), read_component(view, i, 1)};
+    return values;
+}
+
+std::vector<Rgba> read_vec4s(const GltfFile& file, int index, const std::string& user, float w_default) {
+    const AccessorView view = view_accessor(file, index, user);
+    const bool type_ok = view.type == TINYGLTF_TYPE_VEC3 || view.type == TINYGLTF_TYPE_VEC4;
+    const bool component_ok = view.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                              (view.normalized && (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                   view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    if (!type_ok || !component_ok)
+        file.fail(user, "accessor " + std::to_string(index) + " must be VEC3 or VEC4 of floats or normalised unsigned integers");
+    const int components = view.type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    std::vector<Rgba> values(view.count);
+    for (size_t i = 0; i < view.count; ++i)
+        for (int c = 0; c < 4; ++c) values[i][size_t(c)] = c < components ? read_component(view, i, c) : w_default;
+    return values;
+}
+
 std::vector<int> read_indices(const GltfFile& file, int index, const std::string& user,
                               size_t vertex_count) {
     const AccessorView view =

@@ -16,10 +16,12 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <stb_image.h>
 
 #include "steadylight/scene/gltf_accessors.h"
 #include "steadylight/scene/gltf_animation.h"
 #include "steadylight/scene/gltf_materials.h"
+#include "steadylight/scene/shapes.h"
 
 namespace steadylight {
 namespace {
@@ -48,9 +50,30 @@ std::string trim_newlines(std::string s) {
     return s;
 }
 
-// Textures are ignored, so there is no point in decoding their images.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
+/// Decodes an embedded or external PNG or JPEG with stb_image into 8-bit RGBA (tinygltf reads
+/// the bytes, from the buffer view, the data URI or the file beside the glTF). An image stb_image
+/// cannot read (KTX2, WebP, a broken file) stays empty: textures using it are ignored, with a
+/// warning (gltf_materials.cpp).
+bool decode_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                  const unsigned char* bytes, int size, void*) {
+    if (!bytes || size <= 0) {
+        if (err) *err += fmt::format("image {} \"{}\": no data\n", index, image->uri);
+        return false;
+    }
+    int width = 0, height = 0, channels = 0;
+    stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
+    if (!pixels) {
+        image->image.clear();
+        image->width = image->height = 0;
+        return true;
+    }
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+    stbi_image_free(pixels);
     return true;
 }
 
@@ -61,7 +84,7 @@ tinygltf::Model load_model(const std::string& path) {
                          "unknown glTF file extension \"" + ext + "\" (expected .gltf or .glb)");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path, "file not found");
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skip_image, nullptr);
+    loader.SetImageLoader(decode_image, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
@@ -88,11 +111,36 @@ std::vector<int> triangulate(const std::vector<int>& v, int mode) {
     return triangles;
 }
 
+/// Reads the optional per-vertex attribute `name` with `read`, checking its count.
+template <class Read>
+auto read_vertex_attribute(const GltfFile& file, const tinygltf::Primitive& primitive, const std::string& name,
+                           const std::string& where, size_t vertex_count, Read read) {
+    decltype(read(0, std::string())) values;
+    const auto it = primitive.attributes.find(name);
+    if (it == primitive.attributes.end()) return values;
+    values = read(it->second, where + ", " + name);
+    if (values.size() != vertex_count) file.fail(where, name + " and POSITION counts differ");
+    return values;
+}
+
+/// TEXCOORD_0 and _1, COLOR_0 and TANGENT, where the primitive has them.
+void read_surface_attributes(const GltfFile& file, const tinygltf::Primitive& primitive, const std::string& where,
+                             TriangleMesh& mesh) {
+    const size_t n = mesh.positions.size();
+    const auto texcoords = [&](int index, const std::string& user) { return read_texcoords(file, index, user); };
+    mesh.uv0 = read_vertex_attribute(file, primitive, "TEXCOORD_0", where, n, texcoords);
+    mesh.uv1 = read_vertex_attribute(file, primitive, "TEXCOORD_1", where, n, texcoords);
+    mesh.colors = read_vertex_attribute(file, primitive, "COLOR_0", where, n, [&](int index, const std::string& user) {
+        return read_vec4s(file, index, user, 1);
+    });
+    mesh.tangents = read_vertex_attribute(file, primitive, "TANGENT", where, n, [&](int index, const std::string& user) {
+        return read_vec4s(file, index, user, 1);
+    });
+}
+
 void warn_ignored_attributes(const GltfFile& file, const tinygltf::Primitive& primitive,
                              const std::string& where) {
     if (!primitive.targets.empty()) file.warn_once("morph targets are ignored", where);
-    if (primitive.attributes.contains("COLOR_0"))
-        file.warn_once("vertex colours (COLOR_0) are ignored", where);
 }
 
 /// The primitive's vertices in drawing order: its indices, or 0, 1, 2, ... without them.
@@ -128,6 +176,7 @@ std::optional<TriangleMesh> read_primitive(const GltfFile& file,
         if (mesh.normals.size() != mesh.positions.size())
             file.fail(where, "NORMAL and POSITION counts differ");
     }
+    read_surface_attributes(file, primitive, where, mesh);
     mesh.indices =
         triangulate(primitive_vertices(file, primitive, where, mesh.positions.size()), mode);
     if (mesh.indices.size() % 3 != 0)
@@ -238,6 +287,10 @@ void SceneWalker::add_mesh(const tinygltf::Node& node, int node_index,
         std::optional<TriangleMesh> triangles = read_primitive(m_file, primitive, where);
         if (!triangles) continue;
         const ImportedMaterial& imported = material(primitive.material);
+        const MaterialDesc& used = m_desc.materials[size_t(imported.index)];
+        // glTF §3.7.2.1: without TANGENT, a normal-mapped primitive gets generated tangents.
+        if (used.normal_texture.is_set() && triangles->tangents.empty())
+            generate_tangents(*triangles, used.normal_texture.texcoord);
         ObjectDesc object{.name = object_name(node, mesh, node_index, p),
                           .geometry = std::move(*triangles),
                           .material = imported.index,
@@ -310,10 +363,45 @@ void SceneWalker::add_light(const tinygltf::Node& node, const std::vector<Animat
     m_desc.point_lights.push_back(desc);
 }
 
+/// A URI with its %XX escapes decoded (glTF URIs are RFC 3986; "my%20wood.png").
+std::string decode_uri(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+/// Every image of the file, in file order from `file.image_base` on; one that could not be
+/// decoded as a white texel, which no texture uses (gltf_materials.cpp ignores those textures).
+void append_images(const GltfFile& file, SceneDesc& desc) {
+    for (size_t i = 0; i < file.model.images.size(); ++i) {
+        const tinygltf::Image& image = file.model.images[i];
+        const std::string name = image.name.empty() ? image.uri : image.name;
+        // tinygltf only warns about a missing image file; it is an error, as a missing buffer is.
+        if (!image.uri.empty() && !image.uri.starts_with("data:") &&
+            !std::filesystem::exists(std::filesystem::path(file.path).parent_path() / decode_uri(image.uri)))
+            file.fail(describe("image", i, image.name), "image file \"" + image.uri + "\" not found");
+        if (!is_decoded(image)) {
+            desc.images.push_back({.name = name, .width = 1, .height = 1, .rgba = {255, 255, 255, 255}});
+            continue;
+        }
+        desc.images.push_back({.name = name,
+                               .width = image.width,
+                               .height = image.height,
+                               .rgba = image.image});
+    }
+}
+
 void warn_required_extensions(const GltfFile& file) {
     static const std::set<std::string> supported = {
         "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength",
-        "KHR_lights_punctual"};
+        "KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_specular"};
     for (const std::string& name : file.model.extensionsRequired)
         if (!supported.contains(name))
             file.warn_once(
@@ -342,7 +430,8 @@ SceneDesc load_gltf_scene_desc(const std::string& path) {
 }
 
 float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera) {
-    const GltfFile file{.path = path, .model = load_model(path)};
+    const GltfFile file{.path = path, .model = load_model(path), .image_base = int(desc.images.size())};
+    append_images(file, desc);
     warn_required_extensions(file);
 
     // Attach the animation tracks to the nodes first: the walk copies placements into chains.

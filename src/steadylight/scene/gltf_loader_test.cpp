@@ -321,15 +321,18 @@ TEST_F(GltfLoader, StripsAndFansAreTriangulatedAndPointsSkipped) {
 // ---------------------------------------------------------------------------------------------
 // Materials
 
-TEST_F(GltfLoader, BaseColourBecomesClampedLambertReflectance) {
+TEST_F(GltfLoader, BaseColourBecomesClampedPbrBaseColour) {
     const tinygltf::Model model = triangle_with_material(make_material("Paint", {0.2, 0.4, 1.5}));
     for (const Loaded& loaded : write_and_load(model)) {
         SCOPED_TRACE(loaded.path);
         ASSERT_EQ(loaded.desc.materials.size(), 1u);
         const MaterialDesc& paint = loaded.desc.materials[0];
         EXPECT_EQ(paint.name, "Paint");
-        EXPECT_EQ(paint.type, MaterialType::lambert);
+        EXPECT_EQ(paint.type, MaterialType::pbr);
         expect_near(paint.reflectance, {0.2f, 0.4f, 1});
+        EXPECT_EQ(paint.metallic, 0.0f);
+        EXPECT_EQ(paint.roughness, 1.0f);  // glTF's default
+        EXPECT_EQ(paint.alpha_mode, AlphaMode::opaque);
         EXPECT_EQ(loaded.desc.objects[0].material, 0);
         EXPECT_FALSE(loaded.desc.objects[0].is_emitter());
     }

@@ -137,8 +137,15 @@ MaterialDesc parse_material(const std::string& name, const JsonObject& json) {
     } else if (type == "glossy") {
         m.type = MaterialType::glossy;
         m.reflectance = {0.9f, 0.9f, 0.9f};
+    } else if (type == "pbr") {
+        m.type = MaterialType::pbr;
+        m.roughness = 0.5f;
+        m.metallic = json.number("metallic", m.metallic);
+        m.specular = json.number("specular", m.specular);
+        if (!(m.metallic >= 0 && m.metallic <= 1)) json.fail("metallic", "must lie in [0, 1]");
+        if (!(m.specular >= 0 && m.specular <= 1)) json.fail("specular", "must lie in [0, 1]");
     } else {
-        json.fail("type", "unknown material type \"" + type + "\" (lambert, mirror, dielectric, glossy)");
+        json.fail("type", "unknown material type \"" + type + "\" (lambert, mirror, dielectric, glossy, pbr)");
     }
     m.reflectance = json.rgb("reflectance", m.reflectance);
     m.transmittance = json.rgb("transmittance", m.transmittance);
@@ -281,6 +288,10 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& where) {
         if (!is_finite(p)) throw InputError(where, "vertex position is not finite");
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
         throw InputError(where, "normal count differs from vertex count");
+    const size_t n = mesh.positions.size();
+    if ((!mesh.uv0.empty() && mesh.uv0.size() != n) || (!mesh.uv1.empty() && mesh.uv1.size() != n) ||
+        (!mesh.colors.empty() && mesh.colors.size() != n) || (!mesh.tangents.empty() && mesh.tangents.size() != n))
+        throw InputError(where, "texture coordinate, colour or tangent count differs from vertex count");
     for (const Vec3& n : mesh.normals)
         if (!is_finite(n)) throw InputError(where, "vertex normal is not finite");
 }
@@ -320,6 +331,13 @@ void validate(const SceneDesc& desc) {
     if (desc.frame_count < 1) throw InputError(file, "the scene has no frames");
     if (desc.camera.placement.empty()) throw InputError(file, "the scene has no camera");
     validate_placement(desc.camera.placement, desc, file + ": camera");
+    for (const TextureImage& image : desc.images)
+        if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4)
+            throw InputError(file + ": image \"" + image.name + "\"", "pixel data does not match its size");
+    for (const MaterialDesc& m : desc.materials)
+        for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture})
+            if (t->image >= int(desc.images.size()) || t->texcoord < 0 || t->texcoord > 1)
+                throw InputError(file + ": material \"" + m.name + "\"", "texture image or texture coordinate set out of range");
     for (const ObjectDesc& object : desc.objects) {
         const std::string where = file + ": object \"" + object.name + "\"";
         if (object.material < 0 || size_t(object.material) >= desc.materials.size())

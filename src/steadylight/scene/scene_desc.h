@@ -10,25 +10,51 @@
 
 #include "steadylight/base/color.h"
 #include "steadylight/scene/animation.h"
+#include "steadylight/scene/texture.h"
 
 namespace steadylight {
 
-enum class MaterialType { lambert, mirror, dielectric, glossy };
+/// `pbr` is glTF's metallic-roughness model (docs/materials.md): a GGX conductor tinted by the
+/// base colour where metallic, and a diffuse base under a GGX dielectric coat where not.
+enum class MaterialType { lambert, mirror, dielectric, glossy, pbr };
+
+/// glTF's alpha modes (§3.9.4): `mask` cuts out where alpha < alpha_cutoff, for every ray;
+/// `blend` is treated as a mask at the same cutoff (docs/gltf.md).
+enum class AlphaMode { opaque, mask, blend };
 
 struct MaterialDesc {
     std::string name;
     MaterialType type = MaterialType::lambert;
-    Rgb reflectance{0.8f, 0.8f, 0.8f};  // lambert albedo; mirror and glossy: normal-incidence colour
+    Rgb reflectance{0.8f, 0.8f, 0.8f};  // lambert albedo; mirror and glossy: normal-incidence colour; pbr: base colour
     Rgb transmittance{1, 1, 1};         // dielectric: colour filter on refraction
-    float ior = 1.5f;                   // dielectric: index of refraction inside / outside
-    float roughness = 0.3f;             // glossy: GGX alpha = roughness^2
+    float ior = 1.5f;                   // dielectric: index of refraction inside / outside; pbr: the coat's
+    float roughness = 0.3f;             // glossy and pbr: GGX alpha = roughness^2
+    float metallic = 0;                 // pbr: 1 conductor, 0 coated diffuse (blended between)
+    float specular = 1;                 // pbr: scales the coat's Fresnel (KHR_materials_specular); 0: no coat
+    float specular_color = 1;           // pbr: scales the coat's normal-incidence Fresnel only
+    float alpha = 1;                    // base colour alpha
+    AlphaMode alpha_mode = AlphaMode::opaque;
+    float alpha_cutoff = 0.5f;
+    TextureRef base_color_texture;          // sRGB; multiplies `reflectance` and `alpha`
+    TextureRef metallic_roughness_texture;  // linear; B multiplies metallic, G roughness
+    TextureRef normal_texture;              // tangent-space normal map
+    float normal_scale = 1;                 // scales the map's x and y
+    TextureRef emissive_texture;            // sRGB; multiplies the emission of objects using it
+
+    bool is_textured() const {
+        return base_color_texture.is_set() || metallic_roughness_texture.is_set() || normal_texture.is_set();
+    }
+    bool has_cutouts() const { return alpha_mode != AlphaMode::opaque; }
 };
 
-/// Triangles in object space. `normals` is empty (flat shading) or one per position.
+/// Triangles in object space. Every per-vertex array is empty or one per position.
 struct TriangleMesh {
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;
-    std::vector<int> indices;  // three per triangle, counter-clockwise around the front normal
+    std::vector<Vec3> normals;   // empty: flat shading
+    std::vector<int> indices;    // three per triangle, counter-clockwise around the front normal
+    std::vector<Vec2> uv0, uv1;  // TEXCOORD_0 and _1
+    std::vector<Rgba> colors;    // COLOR_0, multiplying the base colour and alpha
+    std::vector<Rgba> tangents;  // xyz unit tangent, w = +-1 bitangent sign (glTF TANGENT)
 };
 
 /// An analytic sphere in object space; the front side is the outside.
@@ -101,6 +127,7 @@ struct SceneDesc {
     std::string source_file;  // where it was loaded from, for messages
     CameraDesc camera;
     std::vector<MaterialDesc> materials;
+    std::vector<TextureImage> images;  // what MaterialDesc's TextureRefs point at
     std::vector<ObjectDesc> objects;
     std::vector<PointLightDesc> point_lights;
     int frame_count = 1;

@@ -1,5 +1,7 @@
 #include "steadylight/scene/shapes.h"
 
+#include <cmath>
+
 #include <tiny_obj_loader.h>
 
 #include "steadylight/base/error.h"
@@ -11,6 +13,33 @@ TriangleMesh make_quad(Vec3 corner, Vec3 edge_u, Vec3 edge_v) {
     mesh.positions = {corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v};
     mesh.indices = {0, 1, 2, 0, 2, 3};
     return mesh;
+}
+
+void generate_tangents(TriangleMesh& mesh, int texcoord) {
+    const std::vector<Vec2>& uv = texcoord == 1 ? mesh.uv1 : mesh.uv0;
+    const size_t n = mesh.positions.size();
+    mesh.tangents.assign(n, Rgba{1, 0, 0, 1});
+    if (uv.size() != n) return;
+    // Accumulate each triangle's dp/du and dp/dv at its corners (Lengyel 2001).
+    std::vector<Vec3> sum_t(n), sum_b(n);
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const size_t a = size_t(mesh.indices[i]), b = size_t(mesh.indices[i + 1]), c = size_t(mesh.indices[i + 2]);
+        const Vec3 e1 = mesh.positions[b] - mesh.positions[a], e2 = mesh.positions[c] - mesh.positions[a];
+        const float du1 = uv[b].x - uv[a].x, dv1 = uv[b].y - uv[a].y, du2 = uv[c].x - uv[a].x, dv2 = uv[c].y - uv[a].y;
+        const float det = du1 * dv2 - du2 * dv1;
+        if (!(std::abs(det) > 1e-20f)) continue;
+        const Vec3 t = (e1 * dv2 - e2 * dv1) / det, bt = (e2 * du1 - e1 * du2) / det;
+        for (const size_t v : {a, b, c}) sum_t[v] += t, sum_b[v] += bt;
+    }
+    // Orthogonalise against the vertex normal (or the accumulated frame's own normal).
+    for (size_t v = 0; v < n; ++v) {
+        const Vec3 nrm = mesh.normals.empty() ? normalize(cross(sum_t[v], sum_b[v])) : mesh.normals[v];
+        Vec3 t = sum_t[v] - nrm * dot(nrm, sum_t[v]);
+        if (!(length2(t) > 0) || !is_finite(t) || !is_finite(nrm)) continue;
+        t = normalize(t);
+        const float w = dot(cross(nrm, t), sum_b[v]) < 0 ? -1.0f : 1.0f;
+        mesh.tangents[v] = {t.x, t.y, t.z, w};
+    }
 }
 
 TriangleMesh make_box(Vec3 center, Vec3 size) {

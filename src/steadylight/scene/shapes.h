@@ -12,6 +12,12 @@ namespace steadylight {
 /// normalize(cross(edge_u, edge_v)).
 TriangleMesh make_quad(Vec3 corner, Vec3 edge_u, Vec3 edge_v);
 
+/// Per-vertex tangents from texture coordinate set `texcoord` (0 or 1), for normal maps whose
+/// mesh has none: each triangle's dp/du averaged at its vertices, orthogonalised against the
+/// normal, w = the bitangent's side (Lengyel 2001; glTF asks for MikkTSpace, which agrees on
+/// smooth, unmirrored meshes). Vertices without usable coordinates get (1, 0, 0, 1).
+void generate_tangents(TriangleMesh& mesh, int texcoord);
+
 /// An axis-aligned box with outward-facing triangles.
 TriangleMesh make_box(Vec3 center, Vec3 size);
 

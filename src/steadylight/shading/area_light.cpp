@@ -13,27 +13,46 @@ namespace {
 
 struct Triangle {
     Vec3 p0, p1, p2, n;
+    int primitive = 0;  // index in the mesh, for the emissive texture
+};
+
+/// An emitter's emissive texture, read where a sample lands.
+struct EmissiveTexture {
+    const SceneDesc* desc = nullptr;
+    const MaterialDesc* material = nullptr;
+    const TriangleMesh* mesh = nullptr;
+
+    bool is_set() const { return material && material->emissive_texture.is_set(); }
+    Rgb tint(int primitive, Vec2 b) const {
+        if (!is_set()) return {1, 1, 1};
+        return emissive_tint_at(*desc, *material, surface_attributes(*mesh, {primitive, b.x, b.y}));
+    }
 };
 
 class AreaLight final : public Light {
 public:
-    AreaLight(const ObjectDesc& object, Rgb Le, std::vector<Triangle> triangles, std::vector<float> cdf, float area)
-        : m_object(object), m_Le(Le), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area) {
+    AreaLight(const ObjectDesc& object, Rgb Le, std::vector<Triangle> triangles, std::vector<float> cdf, float area,
+              EmissiveTexture texture)
+        : m_object(object), m_Le(Le), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area),
+          m_texture(texture) {
         bound_triangles();
+        // Lights are chosen by power: a textured one by its image's average (its uv layout is not weighed).
+        m_mean_Le = m_texture.is_set() ? m_Le * average_color(m_texture.desc->images[size_t(m_texture.material->emissive_texture.image)], true)
+                                       : m_Le;
     }
 
     AreaLight(const ObjectDesc& object, Rgb Le, Vec3 center, float radius)
-        : m_object(object), m_Le(Le), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius),
+        : m_object(object), m_Le(Le), m_mean_Le(Le), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius),
           m_bound_radius(radius) {}
 
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const override {
         LightSample s;
-        sample_point(u, s.p, s.n);
+        const Rgb tint = sample_point(u, s.p, s.n);
         const Vec3 d = s.p - ref;
         s.distance = length(d);
         if (!(s.distance > 0)) return std::nullopt;
         s.wi = d / s.distance;
-        s.Li = emitted_radiance(m_object, m_Le, s.n, -s.wi);
+        s.Li = emitted_radiance(m_object, m_Le * tint, s.n, -s.wi);
         s.pdf = area_to_solid_angle(1 / m_area, ref, s.p, s.n);
         if (is_black(s.Li) || !(s.pdf > 0)) return std::nullopt;
         return s;
@@ -43,17 +62,17 @@ public:
         return area_to_solid_angle(1 / m_area, ref, p, n);
     }
 
-    float power() const override { return luminance(m_Le) * pi * m_area * sides(); }
+    float power() const override { return luminance(m_mean_Le) * pi * m_area * sides(); }
 
     float importance(Vec3 ref, Vec3 n) const override {
         // The area a sphere shows from any side is a quarter of its surface.
         const float shown_area = m_triangles.empty() ? m_area / 4 : m_area;
-        return importance_bound(luminance(m_Le) * shown_area, ref, n, m_center, m_bound_radius, m_bound_normal);
+        return importance_bound(luminance(m_mean_Le) * shown_area, ref, n, m_center, m_bound_radius, m_bound_normal);
     }
 
     std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const override {
         EmissionSample s;
-        sample_point(u_position, s.p, s.n);
+        const Rgb tint = sample_point(u_position, s.p, s.n);
         // A two-sided emitter picks its side with the first direction number, then reuses it.
         if (m_object.two_sided_emission) {
             const bool back = u_direction.x < 0.5f;
@@ -62,7 +81,7 @@ public:
         }
         // Cosine-weighted directions: Le cos / (pdf_area pdf_direction) = Le pi A (per side).
         s.d = Frame::from_normal(s.n).to_world(sample_cosine_hemisphere(u_direction));
-        s.power = m_Le * (pi * m_area * sides());
+        s.power = m_Le * tint * (pi * m_area * sides());
         return s;
     }
 
@@ -98,11 +117,12 @@ private:
 
     float sides() const { return m_object.two_sided_emission ? 2.0f : 1.0f; }
 
-    void sample_point(Vec2 u, Vec3& p, Vec3& n) const {
+    /// A point uniform by area, and the emissive texture's tint there.
+    Rgb sample_point(Vec2 u, Vec3& p, Vec3& n) const {
         if (m_triangles.empty()) {
             n = sample_uniform_sphere(u);
             p = m_center + n * m_radius;
-            return;
+            return {1, 1, 1};
         }
         // Choose a triangle with u.x, then reuse the remainder of u.x inside it.
         const size_t i = std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u.x) - m_cdf.begin()),
@@ -113,10 +133,12 @@ private:
         const Triangle& t = m_triangles[i];
         p = t.p0 * (1 - b.x - b.y) + t.p1 * b.x + t.p2 * b.y;
         n = t.n;
+        return m_texture.tint(t.primitive, b);
     }
 
     const ObjectDesc& m_object;
-    Rgb m_Le;  // emitted radiance at this frame
+    Rgb m_Le;       // emitted radiance at this frame, before the emissive texture
+    Rgb m_mean_Le;  // times the texture's average colour
     std::vector<Triangle> m_triangles;
     std::vector<float> m_cdf;
     Vec3 m_center;
@@ -124,17 +146,18 @@ private:
     float m_area = 0;
     float m_bound_radius = 0;  // about m_center
     Vec3 m_bound_normal;       // zero unless flat and one-sided
+    EmissiveTexture m_texture;
 };
 
 std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, Rgb Le, const TriangleMesh& mesh,
-                                       const Transform& world_from_object) {
+                                       const Transform& world_from_object, EmissiveTexture texture) {
     std::vector<Triangle> triangles;
     std::vector<float> cdf;
     float area = 0;
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
         Triangle t{world_from_object.point(mesh.positions[size_t(mesh.indices[i])]),
                    world_from_object.point(mesh.positions[size_t(mesh.indices[i + 1])]),
-                   world_from_object.point(mesh.positions[size_t(mesh.indices[i + 2])]), {}};
+                   world_from_object.point(mesh.positions[size_t(mesh.indices[i + 2])]), {}, int(i / 3)};
         const Vec3 c = cross(t.p1 - t.p0, t.p2 - t.p0);
         const float a = 0.5f * length(c);
         if (!(a > 0)) continue;
@@ -151,7 +174,7 @@ std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, Rgb Le, const T
     if (!(area > 0)) throw InputError(object.name, "emitter has zero area");
     for (float& c : cdf) c /= area;
     cdf.back() = 1;
-    return std::make_unique<AreaLight>(object, Le, std::move(triangles), std::move(cdf), area);
+    return std::make_unique<AreaLight>(object, Le, std::move(triangles), std::move(cdf), area, texture);
 }
 
 }  // namespace
@@ -161,7 +184,8 @@ std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& fra
     const Transform& world_from_object = frame.world_from_object[size_t(object)];
     const Rgb Le = frame.emission[size_t(object)];
     if (const auto* mesh = std::get_if<TriangleMesh>(&desc.geometry))
-        return make_mesh_light(desc, Le, *mesh, world_from_object);
+        return make_mesh_light(desc, Le, *mesh, world_from_object,
+                               {&scene.desc(), &scene.desc().materials[size_t(desc.material)], mesh});
     // A sphere light must stay a sphere: uneven scaling would need ellipsoid sampling.
     const Sphere& sphere = std::get<Sphere>(desc.geometry);
     const float sx = length(world_from_object.vector({1, 0, 0}));

@@ -11,8 +11,17 @@ std::unique_ptr<Bsdf> make_bsdf(const MaterialDesc& material) {
         case MaterialType::mirror: return make_mirror(material.reflectance);
         case MaterialType::dielectric: return make_dielectric(material.ior, material.transmittance);
         case MaterialType::glossy: return make_glossy(material.reflectance, material.roughness);
+        case MaterialType::pbr: return make_pbr(pbr_params(material));
     }
     return make_lambert(material.reflectance);
+}
+
+PbrParams pbr_params(const MaterialDesc& material) {
+    return {.base = material.reflectance,
+            .metallic = material.metallic,
+            .roughness = material.roughness,
+            .f0 = pbr_f0(material.ior, material.specular_color),
+            .specular = material.specular};
 }
 
 float fresnel_dielectric(float cos_i, float ior) {

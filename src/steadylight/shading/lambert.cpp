@@ -12,7 +12,7 @@ public:
     explicit Lambert(Rgb reflectance) : m_reflectance(reflectance) {}
 
     bool is_diffuse() const override { return true; }
-    Rgb diffuse_reflectance() const override { return m_reflectance; }
+    Rgb diffuse_reflectance(Vec3) const override { return m_reflectance; }
 
     Rgb eval(Vec3 wo, Vec3 wi) const override {
         return wo.z * wi.z > 0 ? m_reflectance * inv_pi : Rgb{};
@@ -26,7 +26,7 @@ public:
         Vec3 wi = sample_cosine_hemisphere(u);
         if (wi.z <= 0 || wo.z == 0) return std::nullopt;
         if (wo.z < 0) wi.z = -wi.z;
-        return BsdfSample{wi, m_reflectance, cosine_hemisphere_pdf(std::abs(wi.z)), false};
+        return BsdfSample{wi, m_reflectance, cosine_hemisphere_pdf(std::abs(wi.z)), false, true};
     }
 
 private:

@@ -22,6 +22,26 @@ void set_triangle_normals(SurfacePoint& sp, const TriangleMesh& mesh, const Tran
     if (dot(sp.ns, sp.ng) < 0) sp.ng = -sp.ng;
 }
 
+/// The material's normal map applied to sp.ns (glTF 2.0 §3.9.3): the texel's tangent-space
+/// normal in the frame of the interpolated tangent, bitangent and normal.
+void apply_normal_map(SurfacePoint& sp, const SceneDesc& desc, const MaterialDesc& m, const TriangleMesh& mesh,
+                      const Transform& world_from_object, TrianglePoint at) {
+    if (!m.normal_texture.is_set() || mesh.tangents.empty()) return;
+    const Rgba tangent = interpolate_tangent(mesh, at);
+    const Vec3 t_world = world_from_object.vector({tangent[0], tangent[1], tangent[2]});
+    const Vec3 t = t_world - sp.ns * dot(sp.ns, t_world);
+    if (!(length2(t) > 0) || !is_finite(t)) return;
+    const Vec3 tu = normalize(t);
+    const Vec3 b = cross(sp.ns, tu) * (tangent[3] < 0 ? -1.0f : 1.0f);
+    const Rgba texel = sample_texture(desc.images[size_t(m.normal_texture.image)], m.normal_texture,
+                                      sp.attributes.uv[m.normal_texture.texcoord], false);
+    const Vec3 n_tangent{(2 * texel[0] - 1) * m.normal_scale, (2 * texel[1] - 1) * m.normal_scale, 2 * texel[2] - 1};
+    const Vec3 n = tu * n_tangent.x + b * n_tangent.y + sp.ns * n_tangent.z;
+    // A bent normal that leaves the surface's side is no use: keep the interpolated one.
+    if (!(length2(n) > 0) || !is_finite(n) || dot(n, sp.ng) <= 0) return;
+    sp.nm = normalize(n);
+}
+
 }  // namespace
 
 SurfacePoint make_surface_point(const Scene& scene, const FrameState& frame, const Ray& ray, const Hit& hit) {
@@ -32,12 +52,43 @@ SurfacePoint make_surface_point(const Scene& scene, const FrameState& frame, con
     const Geometry& geometry = scene.object(hit.object).geometry;
     if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) {
         set_triangle_normals(sp, *mesh, world_from_object, hit);
+        sp.nm = sp.ns;
+        const TrianglePoint at{hit.primitive, hit.u, hit.v};
+        sp.attributes = surface_attributes(*mesh, at);
+        const MaterialDesc& m = scene.desc().materials[size_t(scene.object(hit.object).material)];
+        apply_normal_map(sp, scene.desc(), m, *mesh, world_from_object, at);
     } else {
         const Vec3 p_object = world_from_object.inverse().point(sp.p);
         sp.ng = normalize(world_from_object.normal(p_object - std::get<Sphere>(geometry).center));
-        sp.ns = sp.ng;
+        sp.ns = sp.nm = sp.ng;
     }
     return sp;
+}
+
+SurfaceBsdf bsdf_at(const FrameContext& context, const SurfacePoint& sp) {
+    const ObjectDesc& object = context.scene.object(sp.object);
+    const MaterialDesc& m = context.scene.desc().materials[size_t(object.material)];
+    const auto* mesh = std::get_if<TriangleMesh>(&object.geometry);
+    const bool varies = mesh && (m.base_color_texture.is_set() || m.metallic_roughness_texture.is_set() || !mesh->colors.empty());
+    if (!varies || (m.type != MaterialType::pbr && m.type != MaterialType::lambert))
+        return SurfaceBsdf(context.bsdf_of(sp.object));
+    const Rgba base = base_color_at(context.scene.desc(), m, sp.attributes);
+    const Rgb base_rgb{base[0], base[1], base[2]};
+    if (m.type == MaterialType::lambert) return SurfaceBsdf(make_lambert(base_rgb));
+    PbrParams params = pbr_params(m);
+    params.base = base_rgb;
+    const Vec2 mr = metallic_roughness_at(context.scene.desc(), m, sp.attributes);
+    params.metallic = mr.x;
+    params.roughness = mr.y;
+    return SurfaceBsdf(make_pbr(params));
+}
+
+Rgb emitted_radiance_at(const FrameContext& context, const SurfacePoint& sp, Vec3 w) {
+    const ObjectDesc& object = context.scene.object(sp.object);
+    const MaterialDesc& m = context.scene.desc().materials[size_t(object.material)];
+    const Rgb Le = context.frame.emission[size_t(sp.object)];
+    if (is_black(Le)) return {};
+    return emitted_radiance(object, Le * emissive_tint_at(context.scene.desc(), m, sp.attributes), sp.ng, w);
 }
 
 Rgb emitted_radiance(const ObjectDesc& object, Rgb Le, Vec3 ng, Vec3 w) {
@@ -46,7 +97,7 @@ Rgb emitted_radiance(const ObjectDesc& object, Rgb Le, Vec3 ng, Vec3 w) {
 
 std::optional<Bounce> sample_bounce(const Bsdf& bsdf, const SurfacePoint& sp, Vec3 d, Vec2 u, float u_lobe,
                                     TransportMode mode) {
-    const Frame frame = Frame::from_normal(sp.ns);
+    const Frame frame = Frame::from_normal(sp.nm);
     const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-d), u, u_lobe, mode);
     if (!bs) return std::nullopt;
     return Bounce{*bs, spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi))};

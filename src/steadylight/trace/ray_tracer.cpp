@@ -4,10 +4,29 @@
 #include <utility>
 #include <stdexcept>
 
+#include "steadylight/scene/mesh_attributes.h"
 #include "steadylight/trace/embree_device.h"
 
 namespace steadylight {
+
+struct AlphaTest {
+    const SceneDesc& desc;
+    const MaterialDesc& material;
+    const TriangleMesh& mesh;
+};
+
 namespace {
+
+/// Embree's intersection and occlusion filter: rejects hits where the material is cut out.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+    const auto* test = static_cast<const AlphaTest*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const TrianglePoint at{int(RTCHitN_primID(args->hit, args->N, i)), RTCHitN_u(args->hit, args->N, i),
+                               RTCHitN_v(args->hit, args->N, i)};
+        if (is_cut_out(test->desc, test->material, test->mesh, at)) args->valid[i] = 0;
+    }
+}
 
 constexpr unsigned static_mask = 1u;
 constexpr unsigned dynamic_mask = 2u;
@@ -124,10 +143,22 @@ RTCScene build_flat_embree_scene(const Scene& scene, const FrameState& frame) {
     return flat;
 }
 
+void RayTracer::attach_alpha_test(RTCGeometry geometry, int object) {
+    const ObjectDesc& o = m_scene.object(object);
+    const MaterialDesc& material = m_scene.desc().materials[size_t(o.material)];
+    const auto* mesh = std::get_if<TriangleMesh>(&o.geometry);
+    if (!mesh || !material.has_cutouts()) return;
+    m_alpha_tests.push_back(std::make_unique<AlphaTest>(AlphaTest{m_scene.desc(), material, *mesh}));
+    rtcSetGeometryUserData(geometry, m_alpha_tests.back().get());
+    rtcSetGeometryIntersectFilterFunction(geometry, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, alpha_filter);
+}
+
 void RayTracer::add_static_object(int object, const Transform& world_from_object) {
     const RTCGeometry g = make_world_geometry(m_scene.object(object).geometry, world_from_object);
     // Embree spheres cannot be stretched: an unevenly scaled sphere goes in as an instance.
     if (!g) return add_instanced_object(object, static_mask);
+    attach_alpha_test(g, object);
     const unsigned id = attach(m_static_scene, g);
     m_static_geometry_object.resize(id + 1, -1);
     m_static_geometry_object[id] = object;
@@ -138,10 +169,13 @@ void RayTracer::add_instanced_object(int object, unsigned mask) {
     RTCScene object_scene = rtcNewScene(embree_device());
     rtcSetSceneBuildQuality(object_scene, RTC_BUILD_QUALITY_HIGH);
     const Geometry& geometry = m_scene.object(object).geometry;
-    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry))
-        attach(object_scene, make_triangle_geometry(*mesh, Transform{}));
-    else
+    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) {
+        const RTCGeometry g = make_triangle_geometry(*mesh, Transform{});
+        attach_alpha_test(g, object);
+        attach(object_scene, g);
+    } else {
         attach(object_scene, make_sphere_geometry(std::get<Sphere>(geometry).center, std::get<Sphere>(geometry).radius));
+    }
     rtcCommitScene(object_scene);
     m_object_scenes[size_t(object)] = object_scene;
 

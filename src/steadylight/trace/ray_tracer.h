@@ -7,6 +7,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct Hit {
     int primitive = -1;
     float u = 0, v = 0;  // barycentrics of vertices 1 and 2 (triangles)
 };
+
+/// What the alpha test of one cut-out mesh reads (ray_tracer.cpp).
+struct AlphaTest;
 
 class RayTracer {
 public:
@@ -50,7 +54,11 @@ private:
     /// False when the ray cannot meet any instance before `tmax`, so Embree need not be asked.
     bool may_hit_instances(const Ray& ray, float tmax, Visibility visibility) const;
 
+    /// Makes hits on the object's cut-out parts pass through (glTF alpha MASK), for every ray.
+    void attach_alpha_test(RTCGeometry geometry, int object);
+
     const Scene& m_scene;
+    std::vector<std::unique_ptr<AlphaTest>> m_alpha_tests;
     RTCScene m_static_scene = nullptr;
     RTCScene m_instance_scene = nullptr;  // dynamic objects, and static ones that cannot be baked
     std::vector<RTCScene> m_object_scenes;
