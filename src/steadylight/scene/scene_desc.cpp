@@ -292,8 +292,8 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& where) {
     if ((!mesh.uv0.empty() && mesh.uv0.size() != n) || (!mesh.uv1.empty() && mesh.uv1.size() != n) ||
         (!mesh.colors.empty() && mesh.colors.size() != n) || (!mesh.tangents.empty() && mesh.tangents.size() != n))
         throw InputError(where, "texture coordinate, colour or tangent count differs from vertex count");
-    for (const Vec3& n : mesh.normals)
-        if (!is_finite(n)) throw InputError(where, "vertex normal is not finite");
+    for (const Vec3& normal : mesh.normals)
+        if (!is_finite(normal)) throw InputError(where, "vertex normal is not finite");
 }
 
 void validate_placement(const std::vector<AnimatedTrs>& chain, const SceneDesc& desc,
