@@ -82,6 +82,49 @@ void add_method_options(CLI::App* command, RenderSettings& settings, RawOptions&
     command->add_option("--cache-file", settings.cache_file, "static cache file (default: OUT/SCENE.irrcache)");
 }
 
+/// "localized: the paper's method; photon: ..." from the method table.
+std::string method_help() {
+    std::string help;
+    for (const MethodInfo& info : methods())
+        help += fmt::format("{}{}: {}", help.empty() ? "" : "; ", info.name, info.description);
+    return help;
+}
+
+std::vector<std::string> method_name_list() {
+    std::vector<std::string> names;
+    for (const MethodInfo& info : methods()) names.emplace_back(info.name);
+    return names;
+}
+
+/// The options of `render` beyond add_method_options.
+void add_render_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
+    command->add_option("--frames", raw.frames, "Frames: N, A-B, A-B:STEP or a comma list of them (default: all)");
+    command->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
+        ->check(CLI::Range(1, 1 << 20));
+    command->add_option("--method,--integrator", raw.method, method_help())
+        ->capture_default_str()->check(CLI::IsMember(method_name_list()));
+    command->add_option("--direct-samples", settings.photon.shading.direct_samples,
+                       "shadow rays per diffuse hit and camera ray")
+        ->capture_default_str()->check(CLI::Range(1, 4096));
+    command->add_option("--influence-photons", settings.localized.influence_photons,
+                       "localized: dynamic photons in the influence estimate")
+        ->capture_default_str()->check(CLI::Range(1, 100000));
+    command->add_option("--tau-lower", settings.localized.tau_lower,
+                       "localized: influence (relative to static indirect irradiance) below which L_t alone is used")
+        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
+    command->add_option("--tau-upper", settings.localized.tau_upper, "localized: influence above which L_y alone is used")
+        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
+    command->add_option("--max-depth", settings.path.max_depth, "path: maximum path length in bounces")
+        ->capture_default_str()->check(CLI::Range(0, 10000));
+    command->add_flag("--fixed-seed", settings.path.fixed_seed,
+                     "path: the same random numbers per pixel and camera sample in every frame, so frames "
+                     "differ only where paths meet what moved");
+    command->add_option("--seed", settings.path.seed, "path: another seed gives independent noise (references' noise floor)")
+        ->capture_default_str();
+    command->add_flag("!--no-progress", settings.show_progress, "No progress output");
+    command->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
+}
+
 /// The console and resume options of `render` and `bake`.
 void add_console_options(CLI::App* command, LogOptions& log) {
     command->add_flag("--quiet,-q", log.quiet, "Print errors only (no progress, no log lines)");
@@ -97,20 +140,6 @@ void print_interrupted(const RenderSummary& summary, bool overwrite) {
                  summary.frames_written.size(), summary.frames_written.empty() ? "" : ": ",
                  format_frame_list(summary.frames_written).c_str(), summary.frames_left.size(),
                  format_frame_list(summary.frames_left).c_str(), overwrite ? " without --overwrite" : "");
-}
-
-/// "localized: the paper's method; photon: ..." from the method table.
-std::string method_help() {
-    std::string help;
-    for (const MethodInfo& info : methods())
-        help += fmt::format("{}{}: {}", help.empty() ? "" : "; ", info.name, info.description);
-    return help;
-}
-
-std::vector<std::string> method_name_list() {
-    std::vector<std::string> names;
-    for (const MethodInfo& info : methods()) names.emplace_back(info.name);
-    return names;
 }
 
 /// Checks and converts what add_method_options and the render options read.
@@ -136,36 +165,19 @@ int main(int argc, char** argv) {
     RawOptions raw;
     CLI::App* render = app.add_subcommand("render", "Render the frames of a scene");
     add_method_options(render, settings, raw);
-    render->add_option("--frames", raw.frames, "Frames: N, A-B, A-B:STEP or a comma list of them (default: all)");
-    render->add_flag("--overwrite", settings.overwrite, "Render frames again whose outputs are complete already");
-    render->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
-        ->check(CLI::Range(1, 1 << 20));
-    render->add_option("--method,--integrator", raw.method, method_help())
-        ->capture_default_str()->check(CLI::IsMember(method_name_list()));
-    render->add_option("--direct-samples", settings.photon.shading.direct_samples,
-                       "shadow rays per diffuse hit and camera ray")
-        ->capture_default_str()->check(CLI::Range(1, 4096));
-    render->add_option("--influence-photons", settings.localized.influence_photons,
-                       "localized: dynamic photons in the influence estimate")
-        ->capture_default_str()->check(CLI::Range(1, 100000));
-    render->add_option("--tau-lower", settings.localized.tau_lower,
-                       "localized: influence (relative to static indirect irradiance) below which L_t alone is used")
-        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
-    render->add_option("--tau-upper", settings.localized.tau_upper, "localized: influence above which L_y alone is used")
-        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
-    render->add_option("--max-depth", settings.path.max_depth, "path: maximum path length in bounces")
-        ->capture_default_str()->check(CLI::Range(0, 10000));
-    render->add_flag("--fixed-seed", settings.path.fixed_seed,
-                     "path: the same random numbers per pixel and camera sample in every frame, so frames "
-                     "differ only where paths meet what moved");
-    render->add_option("--seed", settings.path.seed, "path: another seed gives independent noise (references' noise floor)")
-        ->capture_default_str();
-    render->add_flag("!--no-progress", settings.show_progress, "No progress output");
-    render->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
+    add_render_options(render, settings, raw);
     add_output_options(render, settings, raw);
+    render->add_flag("--overwrite", settings.overwrite, "Render frames again whose outputs are complete already");
+    render->add_flag("--require-cache", settings.require_cache,
+                     "A missing or stale static cache file is an error instead of being computed (farm workers)");
+    render->add_flag("--check-complete", settings.check_complete,
+                     "Render nothing: fail listing the selected frames whose outputs are not complete");
+
 
     CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
     add_method_options(bake, settings, raw);
+    std::optional<int> bake_segment;
+    bake->add_option("--segment", bake_segment, "Bake only segment K (0 = the first; see `steadylight info`)");
     LogOptions log;
     add_console_options(render, log);
     add_console_options(bake, log);
@@ -205,7 +217,7 @@ int main(int argc, char** argv) {
         if (raw.threads > 0)
             thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(raw.threads));
         if (*bake) {
-            for (const std::string& file : bake_static_caches(settings)) spdlog::info("static cache: {}", file);
+            for (const std::string& file : bake_static_caches(settings, bake_segment)) spdlog::info("static cache: {}", file);
             return 0;
         }
         const RenderSummary summary = render_animation(settings);
@@ -213,8 +225,13 @@ int main(int argc, char** argv) {
             print_interrupted(summary, settings.overwrite);
             return 130;
         }
-        spdlog::info("{} frame(s) written, {} complete ones skipped, in {} in {:.1f} s", summary.frames_written.size(),
-                     summary.frames_skipped, settings.out_dir, summary.seconds);
+        const std::string claimed = summary.frames_claimed_elsewhere.empty()
+                                        ? ""
+                                        : fmt::format(", {} left to other processes that claimed them ({})",
+                                                      summary.frames_claimed_elsewhere.size(),
+                                                      format_frame_list(summary.frames_claimed_elsewhere));
+        spdlog::info("{} frame(s) written, {} complete ones skipped{}, in {} in {:.1f} s", summary.frames_written.size(),
+                     summary.frames_skipped, claimed, settings.out_dir, summary.seconds);
         return 0;
     } catch (const RenderInterrupted&) {
         std::fputs("steadylight: interrupted\n", stderr);
