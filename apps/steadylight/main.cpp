@@ -3,17 +3,22 @@
 // a render cleanly with exit code 130 (run/interrupt.h).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <memory>
 #include <regex>
+#include <set>
 
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
+#include "steadylight/farm/submit.h"
 #include "steadylight/render.h"
 #include "steadylight/report/report.h"
 #include "steadylight/run/console.h"
@@ -96,7 +101,7 @@ std::vector<std::string> method_name_list() {
     return names;
 }
 
-/// The options of `render` beyond add_method_options.
+/// The options of `render` beyond add_method_options (`submit` takes them too and passes them on).
 void add_render_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
     command->add_option("--frames", raw.frames, "Frames: N, A-B, A-B:STEP or a comma list of them (default: all)");
     command->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
@@ -154,6 +159,65 @@ void finish_settings(const RawOptions& raw, RenderSettings& settings) {
     settings.method = parse_method(raw.method, "--method");
 }
 
+/// The options given to `submit` that its jobs pass on: for `render` all but those the job
+/// scripts set themselves or that are submit's own, for `bake` those of them it takes.
+struct ForwardedOptions {
+    std::vector<std::string> render, bake;
+};
+
+ForwardedOptions forwarded_options(const CLI::App& submit, const CLI::App& bake, const std::vector<std::string>& args) {
+    static const std::set<std::string> not_passed = {"--out",   "--frames", "--threads", "--video",        "--no-progress",
+                                                     "--chunk", "--partition", "--dry-run", "--cpus-per-task"};
+    ForwardedOptions forwarded;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i].size() < 2 || args[i][0] != '-') continue;  // the scene: given to the jobs as an absolute path
+        const std::string name = args[i].substr(0, args[i].find('='));
+        const CLI::Option* option = submit.get_option_no_throw(name);
+        if (!option) continue;
+        std::vector<std::string> words = {args[i]};
+        if (option->get_type_size() != 0 && args[i].find('=') == std::string::npos && i + 1 < args.size())
+            words.push_back(args[++i]);
+        if (std::any_of(not_passed.begin(), not_passed.end(), [&](const std::string& n) { return option->check_name(n); }))
+            continue;
+        forwarded.render.insert(forwarded.render.end(), words.begin(), words.end());
+        if (bake.get_option_no_throw(name)) forwarded.bake.insert(forwarded.bake.end(), words.begin(), words.end());
+    }
+    return forwarded;
+}
+
+/// `steadylight submit`: plans and submits the jobs, then prints what it did and how to watch.
+void run_submit(const CLI::App& submit, const CLI::App& bake, int argc, char** argv, RenderSettings settings,
+                SubmitSettings submit_settings) {
+    namespace fs = std::filesystem;
+    const std::vector<std::string> all(argv + 1, argv + argc);
+    const auto first = std::find(all.begin(), all.end(), "submit");
+    const ForwardedOptions forwarded = forwarded_options(submit, bake, std::vector<std::string>(first + 1, all.end()));
+    submit_settings.render_options = forwarded.render;
+    submit_settings.bake_options = forwarded.bake;
+    submit_settings.program = fs::read_symlink("/proc/self/exe").string();
+    settings.scene_file = fs::absolute(settings.scene_file).string();
+    settings.out_dir = fs::absolute(settings.out_dir).lexically_normal().string();
+    if (!settings.output.video_file.empty()) settings.output.video_file = fs::absolute(settings.output.video_file).string();
+    const SubmitResult result = submit_animation(settings, submit_settings);
+    const JobPlan& plan = result.plan;
+    size_t chunks = 0, bakes = 0;
+    for (const SegmentJobs& jobs : plan.segments) chunks += jobs.chunks.size(), bakes += jobs.bake;
+    std::printf("%zu of %zu frame(s) to render (%zu complete), in %zu chunk(s) of at most %d over %zu segment(s); "
+                "%zu static cache(s) to bake\njob scripts in %s\n",
+                plan.missing.size(), plan.selected.size(), plan.selected.size() - plan.missing.size(), chunks,
+                submit_settings.chunk_frames, plan.segments.size(), bakes, result.script_dir.c_str());
+    if (!result.earlier_jobs_waited_for.empty())
+        std::printf("still running from the earlier submission (the finishing job waits for them): %s\n",
+                    fmt::format("{}", fmt::join(result.earlier_jobs_waited_for, " ")).c_str());
+    for (const std::string& line : result.commands) std::printf("%s%s\n", submit_settings.dry_run ? "would run: " : "ran: ", line.c_str());
+    if (submit_settings.dry_run) return;
+    const std::string ids = fmt::format("{}", fmt::join(result.job_ids, ","));
+    std::printf("submitted jobs %s (the last one finishes: checks the frames, %sreport)\n"
+                "watch them: squeue -j %s    afterwards: sacct -j %s    logs: %s/*.log\n",
+                ids.c_str(), settings.output.video_file.empty() ? "" : "video, ", ids.c_str(), ids.c_str(),
+                result.script_dir.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -173,7 +237,18 @@ int main(int argc, char** argv) {
     render->add_flag("--check-complete", settings.check_complete,
                      "Render nothing: fail listing the selected frames whose outputs are not complete");
 
-
+    CLI::App* submit = app.add_subcommand("submit", "Render the frames on a Slurm cluster: bake, chunk and finishing "
+                                                    "jobs (docs/farm.md)");
+    add_method_options(submit, settings, raw);
+    add_render_options(submit, settings, raw);
+    add_output_options(submit, settings, raw);
+    SubmitSettings submit_settings;
+    submit->add_option("--chunk", submit_settings.chunk_frames, "Frames per array task (chunks never span segments)")
+        ->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    submit->add_option("--partition", submit_settings.partition, "Slurm partition (default: the cluster's)");
+    submit->add_option("--cpus-per-task", submit_settings.cpus_per_task, "CPUs of each job, also its --threads")
+        ->capture_default_str()->check(CLI::Range(1, 1024));
+    submit->add_flag("--dry-run", submit_settings.dry_run, "Write the job scripts and print the sbatch lines; submit nothing");
     CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
     add_method_options(bake, settings, raw);
     std::optional<int> bake_segment;
@@ -181,6 +256,7 @@ int main(int argc, char** argv) {
     LogOptions log;
     add_console_options(render, log);
     add_console_options(bake, log);
+    add_console_options(submit, log);
 
     std::string info_scene;
     CLI::App* info = app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
@@ -216,6 +292,10 @@ int main(int argc, char** argv) {
         std::unique_ptr<tbb::global_control> thread_limit;
         if (raw.threads > 0)
             thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(raw.threads));
+        if (*submit) {
+            run_submit(*submit, *bake, argc, argv, settings, submit_settings);
+            return 0;
+        }
         if (*bake) {
             for (const std::string& file : bake_static_caches(settings, bake_segment)) spdlog::info("static cache: {}", file);
             return 0;
