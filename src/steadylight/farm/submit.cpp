@@ -61,7 +61,7 @@ JobPlan plan_jobs(const RenderSettings& settings, const Scene& scene, const std:
     return plan;
 }
 
-/// `steadylight COMMAND SCENE OPTIONS... --out DIR --threads C --no-progress`-like lines.
+/// `steadylight COMMAND SCENE OPTIONS... --out DIR --threads C`, the start of every job's command.
 std::vector<std::string> steadylight_command(const SubmitSettings& submit, const std::string& command,
                                              const RenderSettings& settings, const std::vector<std::string>& options) {
     std::vector<std::string> line = {submit.program, command, settings.scene_file};

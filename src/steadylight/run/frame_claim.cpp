@@ -2,6 +2,7 @@
 #include "steadylight/run/frame_claim.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -14,7 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
-#include <signal.h>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
