@@ -3,17 +3,22 @@
 // a render cleanly with exit code 130 (run/interrupt.h).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <memory>
 #include <regex>
+#include <set>
 
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
+#include "steadylight/farm/submit.h"
 #include "steadylight/render.h"
 #include "steadylight/report/report.h"
 #include "steadylight/run/console.h"
@@ -82,6 +87,49 @@ void add_method_options(CLI::App* command, RenderSettings& settings, RawOptions&
     command->add_option("--cache-file", settings.cache_file, "static cache file (default: OUT/SCENE.irrcache)");
 }
 
+/// "localized: the paper's method; photon: ..." from the method table.
+std::string method_help() {
+    std::string help;
+    for (const MethodInfo& info : methods())
+        help += fmt::format("{}{}: {}", help.empty() ? "" : "; ", info.name, info.description);
+    return help;
+}
+
+std::vector<std::string> method_name_list() {
+    std::vector<std::string> names;
+    for (const MethodInfo& info : methods()) names.emplace_back(info.name);
+    return names;
+}
+
+/// The options of `render` beyond add_method_options (`submit` takes them too and passes them on).
+void add_render_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
+    command->add_option("--frames", raw.frames, "Frames: N, A-B, A-B:STEP or a comma list of them (default: all)");
+    command->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
+        ->check(CLI::Range(1, 1 << 20));
+    command->add_option("--method,--integrator", raw.method, method_help())
+        ->capture_default_str()->check(CLI::IsMember(method_name_list()));
+    command->add_option("--direct-samples", settings.photon.shading.direct_samples,
+                       "shadow rays per diffuse hit and camera ray")
+        ->capture_default_str()->check(CLI::Range(1, 4096));
+    command->add_option("--influence-photons", settings.localized.influence_photons,
+                       "localized: dynamic photons in the influence estimate")
+        ->capture_default_str()->check(CLI::Range(1, 100000));
+    command->add_option("--tau-lower", settings.localized.tau_lower,
+                       "localized: influence (relative to static indirect irradiance) below which L_t alone is used")
+        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
+    command->add_option("--tau-upper", settings.localized.tau_upper, "localized: influence above which L_y alone is used")
+        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
+    command->add_option("--max-depth", settings.path.max_depth, "path: maximum path length in bounces")
+        ->capture_default_str()->check(CLI::Range(0, 10000));
+    command->add_flag("--fixed-seed", settings.path.fixed_seed,
+                     "path: the same random numbers per pixel and camera sample in every frame, so frames "
+                     "differ only where paths meet what moved");
+    command->add_option("--seed", settings.path.seed, "path: another seed gives independent noise (references' noise floor)")
+        ->capture_default_str();
+    command->add_flag("!--no-progress", settings.show_progress, "No progress output");
+    command->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
+}
+
 /// The console and resume options of `render` and `bake`.
 void add_console_options(CLI::App* command, LogOptions& log) {
     command->add_flag("--quiet,-q", log.quiet, "Print errors only (no progress, no log lines)");
@@ -99,20 +147,6 @@ void print_interrupted(const RenderSummary& summary, bool overwrite) {
                  format_frame_list(summary.frames_left).c_str(), overwrite ? " without --overwrite" : "");
 }
 
-/// "localized: the paper's method; photon: ..." from the method table.
-std::string method_help() {
-    std::string help;
-    for (const MethodInfo& info : methods())
-        help += fmt::format("{}{}: {}", help.empty() ? "" : "; ", info.name, info.description);
-    return help;
-}
-
-std::vector<std::string> method_name_list() {
-    std::vector<std::string> names;
-    for (const MethodInfo& info : methods()) names.emplace_back(info.name);
-    return names;
-}
-
 /// Checks and converts what add_method_options and the render options read.
 void finish_settings(const RawOptions& raw, RenderSettings& settings) {
     if (raw.frames) settings.frames = parse_frame_selection(*raw.frames);
@@ -123,6 +157,65 @@ void finish_settings(const RawOptions& raw, RenderSettings& settings) {
     settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(raw.gather_samples / 2.0))));
     settings.photon.gather.phi_strata = 2 * settings.photon.gather.theta_strata;
     settings.method = parse_method(raw.method, "--method");
+}
+
+/// The options given to `submit` that its jobs pass on: for `render` all but those the job
+/// scripts set themselves or that are submit's own, for `bake` those of them it takes.
+struct ForwardedOptions {
+    std::vector<std::string> render, bake;
+};
+
+ForwardedOptions forwarded_options(const CLI::App& submit, const CLI::App& bake, const std::vector<std::string>& args) {
+    static const std::set<std::string> not_passed = {"--out",   "--frames", "--threads", "--video",        "--no-progress",
+                                                     "--chunk", "--partition", "--dry-run", "--cpus-per-task"};
+    ForwardedOptions forwarded;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i].size() < 2 || args[i][0] != '-') continue;  // the scene: given to the jobs as an absolute path
+        const std::string name = args[i].substr(0, args[i].find('='));
+        const CLI::Option* option = submit.get_option_no_throw(name);
+        if (!option) continue;
+        std::vector<std::string> words = {args[i]};
+        if (option->get_type_size() != 0 && args[i].find('=') == std::string::npos && i + 1 < args.size())
+            words.push_back(args[++i]);
+        if (std::any_of(not_passed.begin(), not_passed.end(), [&](const std::string& n) { return option->check_name(n); }))
+            continue;
+        forwarded.render.insert(forwarded.render.end(), words.begin(), words.end());
+        if (bake.get_option_no_throw(name)) forwarded.bake.insert(forwarded.bake.end(), words.begin(), words.end());
+    }
+    return forwarded;
+}
+
+/// `steadylight submit`: plans and submits the jobs, then prints what it did and how to watch.
+void run_submit(const CLI::App& submit, const CLI::App& bake, int argc, char** argv, RenderSettings settings,
+                SubmitSettings submit_settings) {
+    namespace fs = std::filesystem;
+    const std::vector<std::string> all(argv + 1, argv + argc);
+    const auto first = std::find(all.begin(), all.end(), "submit");
+    const ForwardedOptions forwarded = forwarded_options(submit, bake, std::vector<std::string>(first + 1, all.end()));
+    submit_settings.render_options = forwarded.render;
+    submit_settings.bake_options = forwarded.bake;
+    submit_settings.program = fs::read_symlink("/proc/self/exe").string();
+    settings.scene_file = fs::absolute(settings.scene_file).string();
+    settings.out_dir = fs::absolute(settings.out_dir).lexically_normal().string();
+    if (!settings.output.video_file.empty()) settings.output.video_file = fs::absolute(settings.output.video_file).string();
+    const SubmitResult result = submit_animation(settings, submit_settings);
+    const JobPlan& plan = result.plan;
+    size_t chunks = 0, bakes = 0;
+    for (const SegmentJobs& jobs : plan.segments) chunks += jobs.chunks.size(), bakes += jobs.bake;
+    std::printf("%zu of %zu frame(s) to render (%zu complete), in %zu chunk(s) of at most %d over %zu segment(s); "
+                "%zu static cache(s) to bake\njob scripts in %s\n",
+                plan.missing.size(), plan.selected.size(), plan.selected.size() - plan.missing.size(), chunks,
+                submit_settings.chunk_frames, plan.segments.size(), bakes, result.script_dir.c_str());
+    if (!result.earlier_jobs_waited_for.empty())
+        std::printf("still running from the earlier submission (the finishing job waits for them): %s\n",
+                    fmt::format("{}", fmt::join(result.earlier_jobs_waited_for, " ")).c_str());
+    for (const std::string& line : result.commands) std::printf("%s%s\n", submit_settings.dry_run ? "would run: " : "ran: ", line.c_str());
+    if (submit_settings.dry_run) return;
+    const std::string ids = fmt::format("{}", fmt::join(result.job_ids, ","));
+    std::printf("submitted jobs %s (the last one finishes: checks the frames, %sreport)\n"
+                "watch them: squeue -j %s    afterwards: sacct -j %s    logs: %s/*.log\n",
+                ids.c_str(), settings.output.video_file.empty() ? "" : "video, ", ids.c_str(), ids.c_str(),
+                result.script_dir.c_str());
 }
 
 }  // namespace
@@ -136,39 +229,34 @@ int main(int argc, char** argv) {
     RawOptions raw;
     CLI::App* render = app.add_subcommand("render", "Render the frames of a scene");
     add_method_options(render, settings, raw);
-    render->add_option("--frames", raw.frames, "Frames: N, A-B, A-B:STEP or a comma list of them (default: all)");
-    render->add_flag("--overwrite", settings.overwrite, "Render frames again whose outputs are complete already");
-    render->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
-        ->check(CLI::Range(1, 1 << 20));
-    render->add_option("--method,--integrator", raw.method, method_help())
-        ->capture_default_str()->check(CLI::IsMember(method_name_list()));
-    render->add_option("--direct-samples", settings.photon.shading.direct_samples,
-                       "shadow rays per diffuse hit and camera ray")
-        ->capture_default_str()->check(CLI::Range(1, 4096));
-    render->add_option("--influence-photons", settings.localized.influence_photons,
-                       "localized: dynamic photons in the influence estimate")
-        ->capture_default_str()->check(CLI::Range(1, 100000));
-    render->add_option("--tau-lower", settings.localized.tau_lower,
-                       "localized: influence (relative to static indirect irradiance) below which L_t alone is used")
-        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
-    render->add_option("--tau-upper", settings.localized.tau_upper, "localized: influence above which L_y alone is used")
-        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
-    render->add_option("--max-depth", settings.path.max_depth, "path: maximum path length in bounces")
-        ->capture_default_str()->check(CLI::Range(0, 10000));
-    render->add_flag("--fixed-seed", settings.path.fixed_seed,
-                     "path: the same random numbers per pixel and camera sample in every frame, so frames "
-                     "differ only where paths meet what moved");
-    render->add_option("--seed", settings.path.seed, "path: another seed gives independent noise (references' noise floor)")
-        ->capture_default_str();
-    render->add_flag("!--no-progress", settings.show_progress, "No progress output");
-    render->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
+    add_render_options(render, settings, raw);
     add_output_options(render, settings, raw);
+    render->add_flag("--overwrite", settings.overwrite, "Render frames again whose outputs are complete already");
+    render->add_flag("--require-cache", settings.require_cache,
+                     "A missing or stale static cache file is an error instead of being computed (farm workers)");
+    render->add_flag("--check-complete", settings.check_complete,
+                     "Render nothing: fail listing the selected frames whose outputs are not complete");
 
+    CLI::App* submit = app.add_subcommand("submit", "Render the frames on a Slurm cluster: bake, chunk and finishing "
+                                                    "jobs (docs/farm.md)");
+    add_method_options(submit, settings, raw);
+    add_render_options(submit, settings, raw);
+    add_output_options(submit, settings, raw);
+    SubmitSettings submit_settings;
+    submit->add_option("--chunk", submit_settings.chunk_frames, "Frames per array task (chunks never span segments)")
+        ->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    submit->add_option("--partition", submit_settings.partition, "Slurm partition (default: the cluster's)");
+    submit->add_option("--cpus-per-task", submit_settings.cpus_per_task, "CPUs of each job, also its --threads")
+        ->capture_default_str()->check(CLI::Range(1, 1024));
+    submit->add_flag("--dry-run", submit_settings.dry_run, "Write the job scripts and print the sbatch lines; submit nothing");
     CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
     add_method_options(bake, settings, raw);
+    std::optional<int> bake_segment;
+    bake->add_option("--segment", bake_segment, "Bake only segment K (0 = the first; see `steadylight info`)");
     LogOptions log;
     add_console_options(render, log);
     add_console_options(bake, log);
+    add_console_options(submit, log);
 
     std::string info_scene;
     CLI::App* info = app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
@@ -204,8 +292,12 @@ int main(int argc, char** argv) {
         std::unique_ptr<tbb::global_control> thread_limit;
         if (raw.threads > 0)
             thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(raw.threads));
+        if (*submit) {
+            run_submit(*submit, *bake, argc, argv, settings, submit_settings);
+            return 0;
+        }
         if (*bake) {
-            for (const std::string& file : bake_static_caches(settings)) spdlog::info("static cache: {}", file);
+            for (const std::string& file : bake_static_caches(settings, bake_segment)) spdlog::info("static cache: {}", file);
             return 0;
         }
         const RenderSummary summary = render_animation(settings);
@@ -213,8 +305,13 @@ int main(int argc, char** argv) {
             print_interrupted(summary, settings.overwrite);
             return 130;
         }
-        spdlog::info("{} frame(s) written, {} complete ones skipped, in {} in {:.1f} s", summary.frames_written.size(),
-                     summary.frames_skipped, settings.out_dir, summary.seconds);
+        const std::string claimed = summary.frames_claimed_elsewhere.empty()
+                                        ? ""
+                                        : fmt::format(", {} left to other processes that claimed them ({})",
+                                                      summary.frames_claimed_elsewhere.size(),
+                                                      format_frame_list(summary.frames_claimed_elsewhere));
+        spdlog::info("{} frame(s) written, {} complete ones skipped{}, in {} in {:.1f} s", summary.frames_written.size(),
+                     summary.frames_skipped, claimed, settings.out_dir, summary.seconds);
         return 0;
     } catch (const RenderInterrupted&) {
         std::fputs("steadylight: interrupted\n", stderr);

@@ -10,12 +10,14 @@
 
 #include "steadylight/base/atomic_file.h"
 #include "steadylight/base/checkpoint.h"
+#include "steadylight/base/error.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/video.h"
 #include "steadylight/run/console.h"
+#include "steadylight/run/frame_claim.h"
 #include "steadylight/run/frame_manifest.h"
 #include "steadylight/run/interrupt.h"
 #include "steadylight/run/settings_file.h"
@@ -44,7 +46,8 @@ Scene load_scene(const RenderSettings& settings) {
 /// The segment pass of `segment`, from its cache file when that matches.
 StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
     const std::string file = static_cache_file(settings.cache_file, settings.out_dir, scene, segment);
-    return load_or_run_segment_pass(scene, tracer, segment, settings.photon, file);
+    return load_or_run_segment_pass(scene, tracer, segment, settings.photon, file,
+                                    settings.require_cache ? CacheUse::require : CacheUse::load_or_compute);
 }
 
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
@@ -108,6 +111,10 @@ void write_frame_outputs(const RenderSettings& settings, const Scene& scene, int
     write_frame_manifest(settings.out_dir, scene.name(), frame, written.paths(), key);
 }
 
+bool contains(const std::vector<int>& frames, int frame) {
+    return std::find(frames.begin(), frames.end(), frame) != frames.end();
+}
+
 /// The frames of `frames` (sorted) that lie in `segment`.
 std::vector<int> frames_in(const std::vector<int>& frames, const Segment& segment) {
     std::vector<int> inside;
@@ -128,9 +135,29 @@ void render_frame(const RenderSettings& settings, const Scene& scene, RayTracer&
                  rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
 }
 
+/// This process's claim on `frame` (run/frame_claim.h), or nothing when another process holds
+/// it or has completed the frame meanwhile; either is noted in `summary`.
+std::unique_ptr<FrameClaim> claim_frame(const RenderSettings& settings, const Scene& scene, int frame,
+                                        const std::string& key, RenderSummary& summary) {
+    ClaimAttempt attempt = try_claim_frame(settings.out_dir, scene.name(), frame);
+    if (!attempt.claim) {
+        spdlog::info("frame {}: claimed by another process ({}), left to it", frame, attempt.holder);
+        summary.frames_claimed_elsewhere.push_back(frame);
+        return nullptr;
+    }
+    if (!attempt.taken_over.empty()) spdlog::warn("frame {}: took over a dead claim ({})", frame, attempt.taken_over);
+    if (!settings.overwrite && check_frame_outputs(settings.out_dir, scene.name(), frame, key).complete) {
+        spdlog::info("frame {}: completed by another process meanwhile, skipped", frame);
+        ++summary.frames_skipped;
+        summary.frames_completed_elsewhere.push_back(frame);
+        return nullptr;
+    }
+    return std::move(attempt.claim);
+}
+
 /// Renders and writes `frames` (sorted) in order: for each segment its static pass (when the
-/// method has one), then its frames. Adds each frame to `summary` when written. Throws
-/// RenderInterrupted at the first checkpoint after Ctrl-C.
+/// method has one), then its frames, each under this process's claim. Adds each frame to
+/// `summary` when written. Throws RenderInterrupted at the first checkpoint after Ctrl-C.
 void render_frames(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
                    const std::string& key, RenderSummary& summary) {
     if (frames.empty()) return;
@@ -146,15 +173,36 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
         std::optional<StaticSolution> solution;
         for (const int frame : segment_frames) {
             progress.begin_frame(frame);
-            // The segment's static pass runs (or is loaded) with its first selected frame.
-            if (!solution && method_info(settings.method).has_static_pass)
-                solution = static_pass(settings, scene, tracer, segment);
-            if (interrupt_after == int(summary.frames_written.size())) std::raise(SIGINT);
-            render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame, key);
-            summary.frames_written.push_back(frame);
+            const std::unique_ptr<FrameClaim> claim = claim_frame(settings, scene, frame, key, summary);
+            if (claim) {
+                // The segment's static pass runs (or is loaded) with its first frame rendered here.
+                if (!solution && method_info(settings.method).has_static_pass)
+                    solution = static_pass(settings, scene, tracer, segment);
+                if (interrupt_after == int(summary.frames_written.size())) std::raise(SIGINT);
+                render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame, key);
+                summary.frames_written.push_back(frame);
+            }
             progress.finish_frame();
         }
     }
+}
+
+/// The frames of `todo` that are neither written by this run nor left to or finished by others.
+std::vector<int> frames_left(const std::vector<int>& todo, const RenderSummary& summary) {
+    std::vector<int> left;
+    for (const int frame : todo)
+        if (!contains(summary.frames_written, frame) && !contains(summary.frames_claimed_elsewhere, frame) &&
+            !contains(summary.frames_completed_elsewhere, frame))
+            left.push_back(frame);
+    return left;
+}
+
+/// `--check-complete`: an InputError listing the selected frames in `todo` (not complete).
+void check_complete(const RenderSettings& settings, const std::vector<int>& frames, const std::vector<int>& todo) {
+    if (!todo.empty())
+        throw InputError(settings.out_dir, fmt::format("{} of the {} selected frame(s) are not complete: {}", todo.size(),
+                                                       frames.size(), format_frame_list(todo)));
+    spdlog::info("all {} selected frame(s) are complete", frames.size());
 }
 
 /// ": 0-9, 10-19" for a few segments; nothing for one or for many.
@@ -178,25 +226,38 @@ RenderSummary render_animation(const RenderSettings& settings) {
     const std::string key = record_settings(settings, scene, frames);
     RenderSummary summary;
     const std::vector<int> todo = frames_to_render(settings, scene, frames, key, summary);
+    if (settings.check_complete) check_complete(settings, frames, todo);
     try {
-        render_frames(settings, scene, todo, key, summary);
+        if (!settings.check_complete) render_frames(settings, scene, todo, key, summary);
     } catch (const RenderInterrupted&) {
         summary.interrupted = true;
     }
-    summary.frames_left.assign(todo.begin() + long(summary.frames_written.size()), todo.end());
-    // The video needs every selected frame: after an interrupt, the resumed run makes it.
-    if (!settings.output.video_file.empty() && !summary.interrupted) write_video(settings, scene, frames);
+    summary.frames_left = frames_left(todo, summary);
+    // The video needs every selected frame: after an interrupt, the resumed run makes it; with
+    // frames left to other processes, `--check-complete --video` once they are done.
+    if (!settings.output.video_file.empty() && !summary.interrupted) {
+        if (summary.frames_claimed_elsewhere.empty())
+            write_video(settings, scene, frames);
+        else
+            spdlog::warn("video: not written, other processes are still rendering frames {}; once they are done, "
+                         "render with --check-complete --video", format_frame_list(summary.frames_claimed_elsewhere));
+    }
     summary.seconds = time.elapsed_s();
     return summary;
 }
 
-std::vector<std::string> bake_static_caches(const RenderSettings& settings) {
+std::vector<std::string> bake_static_caches(const RenderSettings& settings, std::optional<int> only_segment) {
     validate(settings);
     const Scene scene = load_scene(settings);
+    const std::vector<Segment>& segments = scene.segments();
+    if (only_segment && (*only_segment < 0 || *only_segment >= int(segments.size())))
+        throw InputError("--segment", fmt::format("{} is not a segment of {}: it has {} (0 to {}; see steadylight info)",
+                                                  *only_segment, settings.scene_file, segments.size(), segments.size() - 1));
     std::filesystem::create_directories(settings.out_dir);
-    RayTracer tracer(scene, scene.evaluate(0));
+    RayTracer tracer(scene, scene.evaluate(only_segment ? segments[size_t(*only_segment)].first : 0));
     std::vector<std::string> files;
-    for (const Segment& segment : scene.segments()) {
+    for (const Segment& segment : segments) {
+        if (only_segment && segment.first != segments[size_t(*only_segment)].first) continue;
         static_pass(settings, scene, tracer, segment);
         files.push_back(static_cache_file(settings.cache_file, settings.out_dir, scene, segment));
     }

@@ -1,7 +1,10 @@
 // The segment pass's result kept on disk: a segment's static irradiance cache is loaded from its
 // file when the file was made from the same inputs (static_inputs_hash), and otherwise computed
 // by the segment pass and saved there, for later runs, `steadylight bake`, and other machines
-// (irradiance/cache_file.h holds the format).
+// (irradiance/cache_file.h holds the format). Many processes may share one file: the one that
+// finds it missing computes it under a lock (`.<file name>.lock` beside it) while the others wait
+// and then load it; a farm worker may instead require it (`render --require-cache`), so that a
+// missing or stale file is an error rather than a second computation.
 #pragma once
 
 #include <string>
@@ -25,9 +28,18 @@ struct StaticSolution {
 std::string static_cache_file(const std::string& cache_file, const std::string& out_dir, const Scene& scene,
                               const Segment& segment);
 
+/// What a run does when a segment's cache file is missing or stale.
+enum class CacheUse {
+    load_or_compute,  // compute it (once: under the file's lock) and save it
+    require,          // an InputError naming the file (`render --require-cache`)
+};
+
 /// The static solution of `segment`: from `file` when that matches its inputs, else computed
-/// (run_segment_pass) and saved to `file`. Logs which, with the record count.
+/// (run_segment_pass) and saved to `file`, holding `.<file name>.lock` meanwhile so that other
+/// processes wait and load it rather than compute it again; with CacheUse::require an
+/// InputError instead. Logs which, with the record count.
 StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                        const PhotonMappingSettings& settings, const std::string& file);
+                                        const PhotonMappingSettings& settings, const std::string& file,
+                                        CacheUse use = CacheUse::load_or_compute);
 
 }  // namespace steadylight

@@ -19,6 +19,8 @@ struct RenderSettings : MethodSettings {
     bool overwrite = false;             // render frames again whose outputs are complete already
     std::optional<int> width, height;  // default: the scene camera's resolution
     std::string cache_file;             // static cache file; default <out>/<scene>.irrcache
+    bool require_cache = false;         // a missing or stale static cache is an error, not computed
+    bool check_complete = false;        // render nothing: an error listing the selected frames not complete
     bool show_progress = true;
     bool aov_pngs = false;              // also write each EXR layer as <scene>_<frame:04>.<layer>.png
     OutputSettings output;              // EXR pixel type, PNG view transform, --video

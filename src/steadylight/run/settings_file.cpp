@@ -12,6 +12,7 @@
 
 #include "steadylight/base/atomic_file.h"
 #include "steadylight/base/error.h"
+#include "steadylight/base/file_lock.h"
 #include "steadylight/base/hash.h"
 #include "steadylight/run/frame_selection.h"
 
@@ -82,11 +83,17 @@ nlohmann::json make_settings_json(const RenderSettings& settings, const RunInfo&
 
 std::string settings_key(const nlohmann::json& settings_json) { return hex_checksum(settings_json.at("render").dump()); }
 
+std::string folder_lock_name(const std::string& out_dir) {
+    return (std::filesystem::path(out_dir) / ".steadylight.lock").string();
+}
+
 std::string settings_file_name(const std::string& out_dir, const std::string& scene_name) {
     return (std::filesystem::path(out_dir) / (scene_name + ".settings.json")).string();
 }
 
 void write_settings_file(const std::string& path, nlohmann::json settings_json, bool overwrite) {
+    // Many processes may start at once on one folder: check and write under its lock.
+    const FileLock lock(folder_lock_name(std::filesystem::path(path).parent_path().string()));
     if (std::ifstream in(path); in) {
         nlohmann::json before;
         try {

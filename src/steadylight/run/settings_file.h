@@ -42,11 +42,16 @@ nlohmann::json make_settings_json(const RenderSettings& settings, const RunInfo&
 /// A checksum of the "render" part of `settings_json`: 16 hex digits.
 std::string settings_key(const nlohmann::json& settings_json);
 
+/// `<out>/.steadylight.lock`: the output folder's lock (base/file_lock.h), held while the settings
+/// file is checked and written and while frames are claimed (run/frame_claim.h), so that many
+/// processes can share the folder.
+std::string folder_lock_name(const std::string& out_dir);
+
 /// `<out>/<scene>.settings.json`.
 std::string settings_file_name(const std::string& out_dir, const std::string& scene_name);
 
 /// Checks `settings_json` against the file at `path` from an earlier run, if there is one, and
-/// writes it there (atomically) with the frames of both. Throws InputError when the "render"
+/// writes it there (atomically) with the frames of both, all under the folder's lock. Throws InputError when the "render"
 /// parts differ, unless `overwrite`.
 void write_settings_file(const std::string& path, nlohmann::json settings_json, bool overwrite);
 

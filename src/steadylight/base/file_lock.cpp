@@ -1,0 +1,33 @@
+// flock(2) on a lock file (file_lock.h).
+#include "steadylight/base/file_lock.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace steadylight {
+
+FileLock::FileLock(const std::string& path) : m_path(path) {
+    m_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (m_fd < 0) throw std::runtime_error("cannot open the lock file " + path + ": " + std::strerror(errno));
+    int result = 0;
+    while ((result = ::flock(m_fd, LOCK_EX)) != 0 && errno == EINTR) {
+    }
+    if (result != 0) {
+        const int error = errno;
+        ::close(m_fd);
+        throw std::runtime_error("cannot lock " + path + ": " + std::strerror(error) +
+                                 " (does the file system support flock? see docs/farm.md)");
+    }
+}
+
+FileLock::~FileLock() {
+    // Closing the descriptor releases the lock.
+    ::close(m_fd);
+}
+
+}  // namespace steadylight
