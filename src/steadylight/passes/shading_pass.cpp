@@ -87,9 +87,19 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
     const Stopwatch caustic_time;
-    c.caustic = albedo_over_pi * remembered(pixel.caustic_memo, pixel.reach, sp, sp.ng, [&] {
-        return PixelMemo::Values{m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate)};
-    })[0];
+    // A caustic estimate is reused by the pixel's other camera rays only where it is smoother than
+    // the pixel (its radius at least the reach): a sharper one is estimated at each ray's own
+    // point, so that the pixel averages it over its area as the path tracer does, instead of
+    // taking one point of it.
+    const PixelMemo::Values* known = pixel.caustic_memo ? pixel.caustic_memo->find(sp, sp.ng, pixel.reach) : nullptr;
+    if (known) {
+        c.caustic = albedo_over_pi * (*known)[0];
+    } else {
+        float radius = 0;
+        const Rgb E = m_caustic.estimate_irradiance_cone(sp.p, sp.ng, m_settings.caustic_estimate, &radius);
+        if (pixel.caustic_memo && radius >= pixel.reach) pixel.caustic_memo->add(sp, sp.ng, {E});
+        c.caustic = albedo_over_pi * E;
+    }
     m_caustic_ns += long(caustic_time.elapsed_s() * 1e9);
 }
 

@@ -44,11 +44,13 @@ Rgb PhotonMap::estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settin
     return sum / (pi * estimate_radius2(neighbours, settings));
 }
 
-Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings) const {
+Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius) const {
     thread_local std::vector<Neighbour> neighbours;
     k_nearest(p, settings.k, settings.max_radius, neighbours);
+    if (radius) *radius = settings.max_radius;
     if (neighbours.empty()) return {};
     const float r2 = estimate_radius2(neighbours, settings), r = std::sqrt(r2);
+    if (radius) *radius = r;
     Rgb sum;
     for (const Neighbour& nb : neighbours)
         if (same_side(m_photons[nb.index], n)) sum += m_photons[nb.index].power * (1 - std::sqrt(nb.distance2) / r);

@@ -42,7 +42,8 @@ public:
 
     /// The same estimate with a cone filter (Jensen 2001, eq. 7.7, k_cone = 1), which keeps sharp
     /// caustic edges sharper: sum of power (1 - d / r) / ((1 - 2/3) pi r^2).
-    Rgb estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings) const;
+    /// `radius`, when given, receives the estimate's radius.
+    Rgb estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius = nullptr) const;
 
 private:
     std::vector<Photon> m_photons;
