@@ -30,18 +30,23 @@ Scene lamp_over_mirror(float intensity) {
     return Scene(std::move(desc));
 }
 
+/// Midpoint rule over the sphere in (cos theta, phi), fine enough for cones of a few tenths of a
+/// radian.
+template <class F>
+double integrate_over_sphere(F&& f) {
+    constexpr int n_cos = 4000, n_phi = 400;
+    double sum = 0;
+    for (int i = 0; i < n_cos; ++i)
+        for (int j = 0; j < n_phi; ++j) sum += f(direction(-1 + (i + 0.5f) * 2 / n_cos, (j + 0.5f) * 2 * pi / n_phi));
+    return sum * (2.0 / n_cos) * (2 * pi / n_phi);
+}
+
 TEST(CausticTargets, PdfIntegratesToOneOverTheSphere) {
     const Scene scene = lamp_over_mirror(1);
     const PreparedFrame frame(scene, 0);
     const CausticTargets targets(frame.context(), Visibility::everything);
     const Vec3 p{0, 1, 0};
-    // Midpoint rule in (cos theta, phi): fine enough for cones of a few tenths of a radian.
-    constexpr int n_cos = 4000, n_phi = 400;
-    double integral = 0;
-    for (int i = 0; i < n_cos; ++i)
-        for (int j = 0; j < n_phi; ++j)
-            integral += targets.pdf(p, direction(-1 + (i + 0.5f) * 2 / n_cos, (j + 0.5f) * 2 * pi / n_phi));
-    EXPECT_NEAR(integral * (2.0 / n_cos) * (2 * pi / n_phi), 1.0, 0.01);
+    EXPECT_NEAR(integrate_over_sphere([&](Vec3 d) { return targets.pdf(p, d); }), 1.0, 0.01);
 }
 
 // E[1 / pdf] over sampled directions is the solid angle the cones cover together: overlapping
@@ -51,12 +56,7 @@ TEST(CausticTargets, SamplesMatchTheirPdfWhereConesOverlap) {
     const PreparedFrame frame(scene, 0);
     const CausticTargets targets(frame.context(), Visibility::everything);
     const Vec3 p{0, 1, 0};
-    constexpr int n_cos = 4000, n_phi = 400;
-    double covered = 0;
-    for (int i = 0; i < n_cos; ++i)
-        for (int j = 0; j < n_phi; ++j)
-            covered += targets.pdf(p, direction(-1 + (i + 0.5f) * 2 / n_cos, (j + 0.5f) * 2 * pi / n_phi)) > 0;
-    covered *= (2.0 / n_cos) * (2 * pi / n_phi);
+    const double covered = integrate_over_sphere([&](Vec3 d) { return targets.pdf(p, d) > 0 ? 1.0f : 0.0f; });
     Pcg32 rng(7);
     double sum = 0;
     constexpr int n = 200'000;
