@@ -11,7 +11,7 @@ namespace steadylight {
 
 /// A frame's photon maps and the irradiance at its photons. Construction traces the photons as
 /// the phase "photons" and records the counts and the time in `stats`. Never copied or moved:
-/// `irradiance` refers to `maps.global`.
+/// `irradiance` refers to `maps.global`, and to `context`, which must outlive it.
 struct FramePhotons {
     FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats);
     FramePhotons(const FramePhotons&) = delete;
