@@ -60,7 +60,10 @@ private:
     PointIndex m_index;
 };
 
-/// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999), lazily:
+/// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999): the
+/// estimate at the photon, which counts itself like any other photon (right for photons of
+/// quasi-random paths, which crowd each other less than random points: docs/truth-suite.md),
+/// divided by the share of its disc on the surface (`coverage`; none: the whole disc). Lazily:
 /// each value is computed the first time a look-up needs it, then kept. A frame of the localized
 /// method looks up only near its few L_y records, so most values are never needed (compute_all()
 /// when they all are). Thread-safe;
