@@ -1,4 +1,5 @@
 #include "steadylight/shading/bsdf.h"
+#include "steadylight/shading/microfacet.h"
 
 #include <cmath>
 #include <utility>
@@ -9,7 +10,10 @@ std::unique_ptr<Bsdf> make_bsdf(const MaterialDesc& material) {
     switch (material.type) {
         case MaterialType::lambert: return make_lambert(material.reflectance);
         case MaterialType::mirror: return make_mirror(material.reflectance);
-        case MaterialType::dielectric: return make_dielectric(material.ior, material.transmittance);
+        case MaterialType::dielectric:
+            // Below GGX's smallest roughness glass is smooth: a delta BSDF, as it always was.
+            if (material.roughness < min_pbr_roughness) return make_dielectric(material.ior, material.transmittance);
+            return make_rough_dielectric(material.ior, material.roughness, material.transmittance);
         case MaterialType::glossy: return make_glossy(material.reflectance, material.roughness);
         case MaterialType::pbr: return make_pbr(pbr_params(material));
     }

@@ -6,6 +6,7 @@
 
 #include "steadylight/base/rng.h"
 #include "steadylight/shading/bsdf.h"
+#include "steadylight/shading/microfacet.h"
 #include "support/bsdf_checks.h"
 
 namespace steadylight {
@@ -98,6 +99,20 @@ TEST(RoughDielectric, SamplesFollowTheirPdf) {
             EXPECT_LT(chi2.statistic, testing::chi2_bound(chi2.dof))
                 << "roughness " << roughness << ", cos theta " << cos_theta;
         }
+}
+
+// Glass below GGX's smallest roughness stays the smooth, delta dielectric it always was.
+TEST(RoughDielectric, GlassBelowTheSmallestRoughnessIsSmooth) {
+    MaterialDesc glass;
+    glass.type = MaterialType::dielectric;
+    glass.roughness = 0;
+    EXPECT_TRUE(make_bsdf(glass)->is_delta());
+    glass.roughness = 0.5f * min_pbr_roughness;
+    EXPECT_TRUE(make_bsdf(glass)->is_delta());
+    glass.roughness = 0.2f;
+    const auto rough = make_bsdf(glass);
+    EXPECT_FALSE(rough->is_delta());
+    EXPECT_FALSE(rough->is_diffuse());
 }
 
 }  // namespace
