@@ -50,7 +50,7 @@ constexpr SceneTolerance tolerances[] = {
     // Allowed 9% until those are fixed (docs/truth-suite.md, "The textured Blender room").
     {"blender_textured", 0.17, 0.12, 0, 0.09},
     // Rough glass and absorbing glass (KHR_materials_volume), made by Blender (docs/truth-suite.md):
-    // measured per pixel 0.067 (photon), 0.071 (localized); blocks 0.038, 0.044; mean within 1%.
+    // measured per pixel 0.066 (photon), 0.070 (localized); blocks 0.038, 0.043; mean within 1.2%.
     {"blender_glass", 0.10, 0.055},
 };
 
