@@ -49,6 +49,9 @@ constexpr SceneTolerance tolerances[] = {
     // 12% high against path-traced irradiance at camera points, the coats' part.
     // Allowed 9% until those are fixed (docs/truth-suite.md, "The textured Blender room").
     {"blender_textured", 0.17, 0.12, 0, 0.09},
+    // Rough glass and absorbing glass (KHR_materials_volume), made by Blender (docs/truth-suite.md):
+    // measured per pixel 0.066 (photon), 0.070 (localized); blocks 0.038, 0.043; mean within 1.2%.
+    {"blender_glass", 0.10, 0.055},
 };
 
 struct Case {

@@ -60,6 +60,7 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         h.add(int(m.type)), h.add(m.reflectance), h.add(m.transmittance), h.add(m.ior), h.add(m.roughness);
         h.add(m.metallic), h.add(m.specular), h.add(m.specular_color), h.add(m.alpha), h.add(int(m.alpha_mode));
         h.add(m.alpha_cutoff), h.add(m.normal_scale);
+        if (const Rgb sigma = m.absorption(); !is_black(sigma)) h.add(sigma);  // older keys stay valid without one
         for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture}) {
             h.add(t->image), h.add(t->texcoord), h.add(int(t->wrap_s)), h.add(int(t->wrap_t)), h.add(int(t->filter));
             for (const float x : {t->offset.x, t->offset.y, t->rotation, t->scale.x, t->scale.y}) h.add(x);

@@ -121,6 +121,8 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
             path.dynamic = true;
         }
 
+        // A segment that crossed absorbing glass lost some of its power on the way.
+        const Rgb absorbed = volume_transmittance(m_context, sp, path.ray.d, hit->t);
         const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
         const Bsdf* bsdf = &*surface_bsdf;
         std::unique_ptr<Bsdf> glossy_part;
@@ -135,15 +137,17 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
             }
         }
 
-        // Scatter, or be absorbed: survive with the probability of the scattered power.
+        // Scatter, or be absorbed (by the surface or the glass behind it): survive with the
+        // probability of the scattered power.
         const Frame frame = Frame::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
         const std::optional<BsdfSample> bs = bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
                                                           TransportMode::importance);
         if (!bs) return;
-        const float survive = std::min(1.0f, max_component(bs->weight));
+        const Rgb throughput = bs->weight * absorbed;
+        const float survive = std::min(1.0f, max_component(throughput));
         if (!(u_survive < survive)) return;
-        path.power *= bs->weight / survive;
+        path.power *= throughput / survive;
         // A bounce off a coat's or a metal's glossy lobe keeps a path caustic; one drawn from a
         // diffuse base ends that (docs/materials.md, "The photon method").
         path.specular_path = (path.bounce == 0 || path.specular_path) && !bs->diffuse;
