@@ -17,6 +17,15 @@ std::vector<Vec3> random_points(int count, uint64_t seed) {
     return points;
 }
 
+/// `count` photons of power `power` each at Halton points of the unit square on the floor (y = 0),
+/// all arriving from above.
+PhotonMap halton_floor_photons(int count, Rgb power) {
+    std::vector<Photon> photons;
+    for (int i = 0; i < count; ++i)
+        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, power});
+    return PhotonMap(std::move(photons), count);
+}
+
 TEST(PhotonMap, EmptyMapReturnsNoNeighbours) {
     const PhotonMap map;
     std::vector<Neighbour> out{{1, 1}};
@@ -67,11 +76,8 @@ TEST(PhotonMap, KNearestBreaksTiesByIndexLikeBruteForce) {
 // Photons of total power P spread uniformly over a unit square: irradiance P / 1 m^2, by both
 // the plain and the cone-filtered estimate, and only from the side the photons arrived on.
 TEST(PhotonMap, UniformPhotonsGiveTheirPowerPerArea) {
-    std::vector<Photon> photons;
     const int count = 40'000;
-    for (int i = 0; i < count; ++i)
-        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {2.0f / count, 0, 0}});
-    const PhotonMap map(std::move(photons), count);
+    const PhotonMap map = halton_floor_photons(count, {2.0f / count, 0, 0});
     const DensitySettings settings{.k = 400, .max_radius = 0.3f};
     EXPECT_NEAR(map.estimate_irradiance({0.5f, 0, 0.5f}, {0, 1, 0}, settings).r, 2.0f, 0.1f);
     EXPECT_NEAR(map.estimate_irradiance_cone({0.5f, 0, 0.5f}, {0, 1, 0}, settings).r, 2.0f, 0.15f);
@@ -100,10 +106,7 @@ TEST(PhotonMap, DensityEstimateIsUnbiasedForRandomPhotons) {
 // The irradiance at a photon is divided by the share of its disc on the surface: half a disc,
 // twice the estimate.
 TEST(PhotonMap, IrradiancePhotonsDivideByTheSurfacesShareOfTheDisc) {
-    std::vector<Photon> photons;
-    for (int i = 0; i < 1000; ++i)
-        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 0, 0}});
-    const PhotonMap map(std::move(photons), 1000);
+    const PhotonMap map = halton_floor_photons(1000, {1e-3f, 0, 0});
     const DensitySettings settings{.k = 50, .max_radius = 0.5f};
     const IrradiancePhotons whole(map, 1, settings, {});
     const IrradiancePhotons half(map, 1, settings, [](Vec3, Vec3, float, uint64_t) { return 0.5f; });
@@ -112,10 +115,7 @@ TEST(PhotonMap, IrradiancePhotonsDivideByTheSurfacesShareOfTheDisc) {
 }
 
 TEST(PhotonMap, IrradiancePhotonLookupRespectsNormals) {
-    std::vector<Photon> photons;
-    for (int i = 0; i < 1000; ++i)
-        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 1e-3f, 1e-3f}});
-    const PhotonMap map(std::move(photons), 1000);
+    const PhotonMap map = halton_floor_photons(1000, {1e-3f, 1e-3f, 1e-3f});
     const IrradiancePhotons irradiance(map, 2, {.k = 50, .max_radius = 0.5f}, {});
     EXPECT_EQ(irradiance.size(), 500u);
     EXPECT_TRUE(irradiance.lookup({0.5f, 0, 0.5f}, {0, 1, 0}, 0.2f).has_value());
@@ -126,10 +126,7 @@ TEST(PhotonMap, IrradiancePhotonLookupRespectsNormals) {
 // The irradiance at photons is computed on first use: a look-up returns the estimate at the
 // nearest precomputed photon, and only the photons looked up are ever computed.
 TEST(PhotonMap, IrradiancePhotonsComputeOnlyWhatIsLookedUp) {
-    std::vector<Photon> photons;
-    for (int i = 0; i < 1000; ++i)
-        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 0, 0}});
-    const PhotonMap map(std::move(photons), 1000);
+    const PhotonMap map = halton_floor_photons(1000, {1e-3f, 0, 0});
     const DensitySettings settings{.k = 50, .max_radius = 0.5f};
     const IrradiancePhotons irradiance(map, 1, settings, {});
     EXPECT_EQ(irradiance.computed(), 0);
