@@ -1,6 +1,7 @@
 // The dynamic photon map's rules (paper §3.1, Figure 2; DESIGN.md §2.1), checked on small scenes.
 #include <gtest/gtest.h>
 
+#include "steadylight/photons/photon_paths.h"
 #include "steadylight/photons/photon_tracer.h"
 #include "support/scene_builder.h"
 
@@ -94,6 +95,23 @@ TEST(DynamicPhotons, NegativePhotonsPassThroughDynamicObjects) {
 TEST(DynamicPhotons, SecondDynamicHitSpawnsNoNegativePhoton) {
     const Maps maps = trace_both(box_scene({{{-0.6f, 1, 0}, 0.5f}, {{0.6f, 1, 0}, 0.5f}}));
     expect_energy_balance(maps);
+}
+
+// The balance, the other way round: the static paths, with the paths that meet a dynamic object
+// retraced from there (negative photons taken from the static path itself), give the complete
+// and dynamic maps photon for photon (photon_paths.h).
+TEST(DynamicPhotons, StaticPathsRetracedWhereTheyMeetDynamicObjectsGiveTheSameMaps) {
+    for (const auto& spheres : std::vector<std::vector<std::pair<Vec3, float>>>{
+             {{{0, 2.5f, 0}, 0.6f}}, {{{0, 3, 0}, 0.5f}, {{0, 1.2f, 0}, 0.6f}}, {{{-0.6f, 1, 0}, 0.5f}, {{0.6f, 1, 0}, 0.5f}}}) {
+        const Scene scene = box_scene(spheres);
+        const PreparedFrame frame(scene, 0);
+        const ComposedPhotons composed = compose_photons(frame.context(), trace_static_photon_paths(frame.context(), settings));
+        const TracedPhotons traced = trace_photons(frame.context(), settings);
+        EXPECT_TRUE(same_photons(composed.maps.global, traced.global));
+        EXPECT_TRUE(same_photons(composed.maps.dynamic, traced.dynamic));
+        EXPECT_EQ(composed.maps.dynamic.size(), traced.dynamic.size());
+        EXPECT_GT(composed.retraced_paths, 0);
+    }
 }
 
 TEST(DynamicPhotons, StaticPassSeesNoDynamicObject) {
