@@ -50,6 +50,28 @@ StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, R
                                     settings.require_cache ? CacheUse::require : CacheUse::load_or_compute);
 }
 
+/// Whether frames compose their photon maps from static photon paths (photon_paths.h).
+bool reuses_photon_paths(const RenderSettings& settings) {
+    return settings.reuse && method_info(settings.method).reads.photon;
+}
+
+/// What every frame of `segment` starts from: the method's static pass (or its file), and the
+/// static photon paths when frames reuse them. Only for methods that have either.
+StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
+    StaticSolution solution = method_info(settings.method).has_static_pass ? static_pass(settings, scene, tracer, segment)
+                                                                           : StaticSolution{IrradianceCache(settings.photon.cache)};
+    if (reuses_photon_paths(settings)) {
+        const Stopwatch time;
+        auto paths = std::make_shared<const StaticPhotonPaths>(
+            trace_segment_photon_paths(scene, tracer, segment, settings.photon.photons));
+        spdlog::info("static photon paths: {} global and {} caustic paths, {} rays, {:.1f} MB, traced in {:.2f} s",
+                     paths->global.count, paths->caustic.count, paths->global.segments.size() + paths->caustic.segments.size(),
+                     double(paths->bytes()) / 1e6, time.elapsed_s());
+        solution.photon_paths = std::move(paths);
+    }
+    return solution;
+}
+
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
     const OutputSettings& output = settings.output;
     write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
@@ -176,8 +198,8 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
             const std::unique_ptr<FrameClaim> claim = claim_frame(settings, scene, frame, key, summary);
             if (claim) {
                 // The segment's static pass runs (or is loaded) with its first frame rendered here.
-                if (!solution && method_info(settings.method).has_static_pass)
-                    solution = static_pass(settings, scene, tracer, segment);
+                if (!solution && (method_info(settings.method).has_static_pass || reuses_photon_paths(settings)))
+                    solution = segment_solution(settings, scene, tracer, segment);
                 if (interrupt_after == int(summary.frames_written.size())) std::raise(SIGINT);
                 render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame, key);
                 summary.frames_written.push_back(frame);

@@ -7,18 +7,22 @@
 // missing or stale file is an error rather than a second computation.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "steadylight/passes/segment_pass.h"
+#include "steadylight/photons/photon_paths.h"
 
 namespace steadylight {
 
-/// What the segment pass leaves for every frame of its segment: the static irradiance cache.
+/// What the segment pass leaves for every frame of its segment: the static irradiance cache,
+/// and the static photon paths when frames reuse them.
 struct StaticSolution {
     IrradianceCache cache;
     double seconds = 0;     // to compute or to load it
     bool loaded = false;    // read from the cache file instead of computed
     std::string file_note;  // why the file was not used, when it was not
+    std::shared_ptr<const StaticPhotonPaths> photon_paths;  // null: frames trace all their photons
 
     long records() const { return long(cache.records().size()); }
 };

@@ -116,4 +116,12 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
     return cache;
 }
 
+StaticPhotonPaths trace_segment_photon_paths(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                             const PhotonSettings& settings) {
+    begin_phase("static photon paths");
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PlacedFrame start(scene, tracer, bsdfs, segment.first);
+    return trace_static_photon_paths(start.context(), settings);
+}
+
 }  // namespace steadylight
