@@ -56,7 +56,8 @@ public:
     size_t indexed_here() const;
 
 private:
-    /// What a composed map adds to its base's index.
+    /// What a composed map adds to its base's index: the ids of base's points and of the added
+    /// ones, both in their tree's order (PointIndex::Mapped), and the added points' tree.
     struct Overlay {
         std::vector<uint32_t> base_ids;
         std::vector<uint32_t> added_ids;

@@ -97,14 +97,14 @@ private:
 /// The ids of an index searched on its own: its points' own.
 struct OwnIds {
     static bool keeps(uint32_t) { return true; }
-    uint32_t operator()(uint32_t id) const { return id; }
+    uint32_t operator()(uint32_t, uint32_t id) const { return id; }
 };
 
-/// The ids of a PointIndex::Mapped.
+/// The ids of a PointIndex::Mapped, by the point's place in the tree.
 struct MappedIds {
     const uint32_t* ids;
     static bool keeps(uint32_t id) { return id != PointIndex::removed; }
-    uint32_t operator()(uint32_t id) const { return ids[id]; }
+    uint32_t operator()(uint32_t position, uint32_t) const { return ids[position]; }
 };
 
 int widest_axis(Vec3 lower, Vec3 upper) {
@@ -151,8 +151,9 @@ void PointIndex::build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper) {
 
 template <class Heap, class Ids>
 void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap, Ids ids) const {
-    const auto offer = [&](const Entry& e) {
-        const uint32_t id = ids(e.id);
+    const auto offer = [&](uint32_t position) {
+        const Entry& e = m_entries[position];
+        const uint32_t id = ids(position, e.id);
         if (!Ids::keeps(id)) return;
         const float dx = e.p[0] - p[0], dy = e.p[1] - p[1], dz = e.p[2] - p[2];
         heap.offer(id, dx * dx + dy * dy + dz * dz);
@@ -177,7 +178,14 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
         cell.offset[axis] = d;
         if (cell.distance2 > heap.radius2()) return;
     }
-    for (uint32_t i = begin; i < end; ++i) offer(m_entries[i]);
+    for (uint32_t i = begin; i < end; ++i) offer(i);
+}
+
+std::vector<uint32_t> PointIndex::in_tree_order(const std::vector<uint32_t>& by_id) const {
+    SL_CHECK(by_id.size() == m_entries.size());
+    std::vector<uint32_t> ids(m_entries.size());
+    for (size_t i = 0; i < m_entries.size(); ++i) ids[i] = by_id[m_entries[i].id];
+    return ids;
 }
 
 template <class... Parts>

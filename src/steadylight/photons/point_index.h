@@ -27,9 +27,10 @@ public:
     /// An id that a MappedIndex gives the points it leaves out.
     static constexpr uint32_t removed = ~0u;
 
-    /// An index whose point i answers as `ids[i]`, or not at all when that is `removed`: an
-    /// index built once and searched as part of a set that has since lost some points and been
-    /// renumbered.
+    /// An index whose points answer with other ids, or not at all (`removed`): an index built
+    /// once and searched as part of a set that has since lost some points and been renumbered.
+    /// `ids` are in the tree's order (in_tree_order()), so a search reads them where it reads
+    /// the points.
     struct Mapped {
         const PointIndex* index;
         const uint32_t* ids;
@@ -39,6 +40,8 @@ public:
     explicit PointIndex(const std::vector<Vec3>& points);
 
     size_t size() const { return m_entries.size(); }
+    /// `by_id[i]` for each point i, in the order the tree keeps the points (Mapped's ids).
+    std::vector<uint32_t> in_tree_order(const std::vector<uint32_t>& by_id) const;
 
     /// The up to `k` nearest points within sqrt(max_distance2) of `p`, nearest first (ties:
     /// smaller index first).
