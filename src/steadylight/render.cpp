@@ -43,11 +43,12 @@ Scene load_scene(const RenderSettings& settings) {
     return scene;
 }
 
-/// The segment pass of `segment`, from its cache file when that matches.
-StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
+/// The segment pass of `segment`, from its cache file when that matches; it keeps `paths`.
+StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment,
+                           std::shared_ptr<const StaticPhotonPaths> paths = nullptr) {
     const std::string file = static_cache_file(settings.cache_file, settings.out_dir, scene, segment);
     return load_or_run_segment_pass(scene, tracer, segment, settings.photon, file,
-                                    settings.require_cache ? CacheUse::require : CacheUse::load_or_compute);
+                                    settings.require_cache ? CacheUse::require : CacheUse::load_or_compute, std::move(paths));
 }
 
 /// Whether frames compose their photon maps from static photon paths (photon_paths.h).
@@ -58,18 +59,16 @@ bool reuses_photon_paths(const RenderSettings& settings) {
 /// What every frame of `segment` starts from: the method's static pass (or its file), and the
 /// static photon paths when frames reuse them. Only for methods that have either.
 StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
-    StaticSolution solution = method_info(settings.method).has_static_pass ? static_pass(settings, scene, tracer, segment)
-                                                                           : StaticSolution{IrradianceCache(settings.photon.cache)};
+    std::shared_ptr<const StaticPhotonPaths> paths;
     if (reuses_photon_paths(settings)) {
         const Stopwatch time;
-        auto paths = std::make_shared<const StaticPhotonPaths>(
-            trace_segment_photon_paths(scene, tracer, segment, settings.photon.photons));
+        paths = std::make_shared<const StaticPhotonPaths>(trace_segment_photon_paths(scene, tracer, segment, settings.photon.photons));
         spdlog::info("static photon paths: {} global and {} caustic paths, {} rays, {:.1f} MB, traced in {:.2f} s",
                      paths->global.count, paths->caustic.count, paths->global.segments.size() + paths->caustic.segments.size(),
                      double(paths->bytes()) / 1e6, time.elapsed_s());
-        solution.photon_paths = std::move(paths);
     }
-    return solution;
+    if (method_info(settings.method).has_static_pass) return static_pass(settings, scene, tracer, segment, std::move(paths));
+    return {IrradianceCache(settings.photon.cache), 0, false, "", std::move(paths)};
 }
 
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {

@@ -41,9 +41,12 @@ enum class CacheUse {
 /// The static solution of `segment`: from `file` when that matches its inputs, else computed
 /// (run_segment_pass) and saved to `file`, holding `.<file name>.lock` meanwhile so that other
 /// processes wait and load it rather than compute it again; with CacheUse::require an
-/// InputError instead. Logs which, with the record count.
+/// InputError instead. Logs which, with the record count. `paths`, when given, are the
+/// segment's static photon paths: the solution keeps them, and a computed cache starts from
+/// their photons rather than tracing its own.
 StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
                                         const PhotonMappingSettings& settings, const std::string& file,
-                                        CacheUse use = CacheUse::load_or_compute);
+                                        CacheUse use = CacheUse::load_or_compute,
+                                        std::shared_ptr<const StaticPhotonPaths> paths = nullptr);
 
 }  // namespace steadylight

@@ -93,15 +93,17 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
 }
 
 IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                 const PhotonMappingSettings& settings) {
+                                 const PhotonMappingSettings& settings, const StaticPhotonPaths* paths) {
     const Bsdfs bsdfs = make_bsdfs(scene);
 
     // Static photons: the complete scene's photon paths with the dynamic objects removed.
     begin_phase("static photons");
-    const PhotonMap static_photons = [&] {
+    PhotonMap traced;
+    if (!paths) {
         const PlacedFrame start(scene, tracer, bsdfs, segment.first);
-        return trace_photons(start.context(), settings.photons, Visibility::static_only).global;
-    }();
+        traced = trace_photons(start.context(), settings.photons, Visibility::static_only).global;
+    }
+    const PhotonMap& static_photons = paths ? paths->global.photons : traced;
     const IrradiancePhotons irradiance(static_photons, settings.irradiance_stride, settings.irradiance_estimate);
     irradiance.compute_all();  // the static cache covers every view
 

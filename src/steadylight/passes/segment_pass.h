@@ -21,9 +21,10 @@ namespace steadylight {
 uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const PhotonMappingSettings& settings);
 
 /// The static irradiance cache of `segment`: static photons, then records over every distinct
-/// camera view. Moves `tracer` through the segment's frames.
+/// camera view. Moves `tracer` through the segment's frames. With `paths` (the segment's static
+/// photon paths, traced with settings.photons) their global map serves as the static photons.
 IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                 const PhotonMappingSettings& settings);
+                                 const PhotonMappingSettings& settings, const StaticPhotonPaths* paths = nullptr);
 
 /// The static photon paths of `segment` (photon_paths.h), which its frames compose their
 /// photon maps from instead of tracing them all. Moves `tracer` to the segment's first frame.

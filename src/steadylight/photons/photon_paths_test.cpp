@@ -52,6 +52,8 @@ struct SceneFrames {
     std::vector<int> frames;
 };
 
+void PrintTo(const SceneFrames& scene_frames, std::ostream* out) { *out << scene_frames.scene; }
+
 class ComposedMapsOnScene : public ::testing::TestWithParam<SceneFrames> {};
 
 // Frames composed out of order, each from the static paths alone: a path a dynamic object met
@@ -87,6 +89,17 @@ TEST_P(ComposedMapsOnScene, LookUpsEqualAnIndexBuiltOverTheWholeMap) {
 INSTANTIATE_TEST_SUITE_P(Scenes, ComposedMapsOnScene,
                          ::testing::Values(SceneFrames{"ball", {30, 0, 31, 59}}, SceneFrames{"table", {45, 12, 13}}),
                          [](const auto& param_info) { return param_info.param.scene; });
+
+// The static pass's cache may start from the paths' global map: it is the static map.
+TEST(ComposedMaps, StaticPathsHoldTheStaticMap) {
+    const Scene scene = load("table");
+    const PreparedFrame frame(scene, 0);
+    const StaticPhotonPaths paths = trace_static_photon_paths(frame.context(), settings);
+    const TracedPhotons traced = trace_photons(frame.context(), settings, Visibility::static_only);
+    EXPECT_TRUE(same_photons(paths.global.photons, traced.global));
+    EXPECT_TRUE(same_photons(paths.caustic.photons, traced.caustic));
+    EXPECT_EQ(paths.global.first_photon.back(), traced.global.size());
+}
 
 // A moving glass ball is a caustic target: caustic photons leave the lights in other directions
 // each frame, so that map is traced whole; the global map is still composed.

@@ -85,7 +85,8 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
             }
         }
 
-        // Scatter, or be absorbed: survive with the probability of the scattered power.
+        // Scatter, or be absorbed: survive with the probability of the scattered power. Always
+        // these four numbers, whatever happens next: resumed paths rely on it (photon_walk.h).
         const Frame frame = Frame::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
         const std::optional<BsdfSample> bs = bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
