@@ -10,38 +10,18 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
-#include <sstream>
 
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/methods/photon_mapping.h"
 #include "steadylight/passes/frame_pass.h"
 #include "steadylight/passes/frame_photons.h"
+#include "scene_bench_options.h"
 
 using namespace steadylight;
 
 namespace {
 
-struct Options {
-    std::vector<std::string> scenes{"ball", "table"};
-    int frames = 1000;
-    int width = 320, height = 240;
-    int method_frames = 0;
-};
-
-Options parse(int argc, char** argv) {
-    Options o;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--frames")) o.frames = std::atoi(argv[i + 1]);
-        if (!std::strcmp(argv[i], "--method-frames")) o.method_frames = std::atoi(argv[i + 1]);
-        if (!std::strcmp(argv[i], "--size")) std::sscanf(argv[i + 1], "%dx%d", &o.width, &o.height);
-        if (!std::strcmp(argv[i], "--scenes")) {
-            o.scenes.clear();
-            std::stringstream list(argv[i + 1]);
-            for (std::string name; std::getline(list, name, ',');) o.scenes.push_back(name);
-        }
-    }
-    return o;
-}
+using Options = SceneBenchOptions;
 
 /// One frame's photon phase: its time (the phase, and with the irradiance photons' index) and counts.
 struct PhotonPhase {
@@ -170,13 +150,14 @@ void run_scene(const std::string& name, const Options& options) {
                 paths->global.segments.size() + paths->caustic.segments.size(), double(paths->bytes()) / 1e6);
     compare_photon_phases(scene, tracer, bsdfs, *paths, settings, std::min(options.frames, scene.frame_count()));
     compare_look_ups(scene, tracer, bsdfs, *paths, scene.frame_count() / 2);
-    if (options.method_frames > 0) compare_methods(scene, tracer, bsdfs, paths, settings, options.method_frames);
+    if (const int method_frames = options.number("method-frames", 0); method_frames > 0)
+        compare_methods(scene, tracer, bsdfs, paths, settings, method_frames);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Options options = parse(argc, argv);
+    const Options options = parse_scene_bench_options(argc, argv, 1000);
     for (const std::string& scene : options.scenes) run_scene(scene, options);
     return 0;
 }
