@@ -101,6 +101,27 @@ def box(name, size, materials, face_materials=None, location=(0, 0, 0)):
     return obj
 
 
+def smooth_sphere(name, radius, location, material, segments=12, rings=6):
+    """A smooth-shaded UV sphere (interpolated shading normals) with one material."""
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=segments, ring_count=rings, radius=radius, location=location)
+    ball = bpy.context.active_object
+    ball.name = name
+    ball.data.materials.append(material)
+    bpy.ops.object.shade_smooth()
+    return ball
+
+
+def walls(name, outline, height, materials, slots=None):
+    """Walls along `outline` (x, y corners walked counter-clockwise seen from above, so that each
+    wall faces the inside, its left), from the floor to `height`, one quad each."""
+    vertices, faces = [], []
+    for a, b in zip(outline, outline[1:] + outline[:1]):
+        n = len(vertices)
+        vertices += [(*a, 0), (*a, height), (*b, height), (*b, 0)]
+        faces.append((n, n + 1, n + 2, n + 3))
+    return mesh_object(name, vertices, faces, materials, slots)
+
+
 def build_room(mat):
     """Floor, ceiling (three quads each, sharing vertices) and the six walls of the L."""
     grid = [(0, 0), (3, 0), (6, 0), (0, 3), (3, 3), (6, 3), (3, 6), (6, 6)]
@@ -111,12 +132,7 @@ def build_room(mat):
     # The outline walked counter-clockwise seen from above: each wall faces the inside (its left).
     outline = [(0, 0), (3, 0), (6, 0), (6, 3), (6, 6), (3, 6), (3, 3), (0, 3)]
     slots = [0, 0, 0, 0, 2, 0, 0, 1]  # (6,6)-(3,6) blue: arm B's end; (0,3)-(0,0) green: arm A's end
-    vertices, faces = [], []
-    for a, b in zip(outline, outline[1:] + outline[:1]):
-        n = len(vertices)
-        vertices += [(*a, 0), (*a, HEIGHT), (*b, HEIGHT), (*b, 0)]
-        faces.append((n, n + 1, n + 2, n + 3))
-    mesh_object("Walls", vertices, faces, [mat["Wall"], mat["Green Wall"], mat["Blue Wall"]], slots)
+    walls("Walls", outline, HEIGHT, [mat["Wall"], mat["Green Wall"], mat["Blue Wall"]], slots)
 
 
 def build_lights(mat):
@@ -131,11 +147,7 @@ def build_lights(mat):
 
 def build_props(mat):
     """The static ball and plinth."""
-    bpy.ops.mesh.primitive_uv_sphere_add(segments=12, ring_count=6, radius=0.35, location=(1.2, 2.4, 0.35))
-    ball = bpy.context.active_object
-    ball.name = "Ball"
-    ball.data.materials.append(mat["Ball"])
-    bpy.ops.object.shade_smooth()
+    smooth_sphere("Ball", 0.35, (1.2, 2.4, 0.35), mat["Ball"])
     box("Plinth", (0.4, 0.4, 1.0), [mat["Wall"]], location=(3.45, 4.9, 0.5))
 
 

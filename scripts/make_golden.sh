@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 binary=${1:-build/steadylight}
 out=tests/scenes/golden
 # SCENE or SCENE:FRAME (a frame in a later segment).
-for entry in cornell ball table corridor mirror_room flythrough glass_move switch_room:15 blender_room blender_textured; do
+for entry in cornell ball table corridor mirror_room flythrough glass_move switch_room:15 blender_room blender_textured blender_glass; do
   scene=${entry%%:*} frame=0
   [[ $entry == *:* ]] && frame=${entry#*:}
   "$binary" render "scenes/$scene.json" --method path --frames "$frame" --spp 4096 --size 80x60 --out "$out" --no-progress

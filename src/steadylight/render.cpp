@@ -19,6 +19,7 @@
 #include "steadylight/run/console.h"
 #include "steadylight/run/frame_claim.h"
 #include "steadylight/run/frame_manifest.h"
+#include "steadylight/run/frame_writer.h"
 #include "steadylight/run/interrupt.h"
 #include "steadylight/run/settings_file.h"
 
@@ -144,16 +145,26 @@ std::vector<int> frames_in(const std::vector<int>& frames, const Segment& segmen
     return inside;
 }
 
-/// One frame: the scene placed there, the method's frame pass, the files written.
-void render_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
-                  const StaticSolution* solution, int frame, const std::string& key) {
-    const Stopwatch time;
+/// One frame: the scene placed there and the method's frame pass.
+RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
+                           const StaticSolution* solution, int frame) {
     const PlacedFrame placed(scene, tracer, bsdfs, frame);
-    const RenderedFrame rendered = method_info(settings.method).render_frame(placed.context(), solution, settings);
-    write_frame_outputs(settings, scene, frame, rendered, key);
-    spdlog::info("frame {:4d}  {:7.2f} s  {}{}", frame, time.elapsed_s(),
-                 frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
-                 rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
+    return method_info(settings.method).render_frame(placed.context(), solution, settings);
+}
+
+/// Writes a rendered frame on `writer`'s thread while the next one renders, holding the frame's
+/// claim until its manifest is written; logs the frame's line when done.
+void write_in_background(FrameWriter& writer, const RenderSettings& settings, const Scene& scene, int frame,
+                         RenderedFrame rendered, std::unique_ptr<FrameClaim> claim, const std::string& key,
+                         double render_s) {
+    writer.write(frame, [&settings, &scene, frame, &key, render_s, rendered = std::move(rendered),
+                         claim = std::move(claim)] {
+        const Stopwatch time;
+        write_frame_outputs(settings, scene, frame, rendered, key);
+        spdlog::info("frame {:4d}  {:7.2f} s  {}  (written in {:.2f} s, beside the next frame){}", frame, render_s,
+                     frame_file_name(settings.out_dir, scene.name(), frame, "exr"), time.elapsed_s(),
+                     rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
+    });
 }
 
 /// This process's claim on `frame` (run/frame_claim.h), or nothing when another process holds
@@ -178,7 +189,8 @@ std::unique_ptr<FrameClaim> claim_frame(const RenderSettings& settings, const Sc
 
 /// Renders and writes `frames` (sorted) in order: for each segment its static pass (when the
 /// method has one), then its frames, each under this process's claim. Adds each frame to
-/// `summary` when written. Throws RenderInterrupted at the first checkpoint after Ctrl-C.
+/// `summary` when written; each frame is written while the next renders (run/frame_writer.h).
+/// Throws RenderInterrupted at the first checkpoint after Ctrl-C, after the frame before it is written.
 void render_frames(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
                    const std::string& key, RenderSummary& summary) {
     if (frames.empty()) return;
@@ -188,23 +200,34 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
     ConsoleProgress progress(int(frames.size()), settings.show_progress);
     const ScopedCheckpointListener listening(&progress);
     const std::optional<int> interrupt_after = test_interrupt_after_frames();
-    for (const Segment& segment : scene.segments()) {
-        const std::vector<int> segment_frames = frames_in(frames, segment);
-        if (segment_frames.empty()) continue;
-        std::optional<StaticSolution> solution;
-        for (const int frame : segment_frames) {
-            progress.begin_frame(frame);
-            const std::unique_ptr<FrameClaim> claim = claim_frame(settings, scene, frame, key, summary);
-            if (claim) {
-                // The segment's static pass runs (or is loaded) with its first frame rendered here.
-                if (!solution && (method_info(settings.method).has_static_pass || reuses_photon_paths(settings)))
-                    solution = segment_solution(settings, scene, tracer, segment);
-                if (interrupt_after == int(summary.frames_written.size())) std::raise(SIGINT);
-                render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame, key);
-                summary.frames_written.push_back(frame);
+    FrameWriter writer([&summary](int frame) { summary.frames_written.push_back(frame); });
+    int rendered_here = 0;
+    try {
+        for (const Segment& segment : scene.segments()) {
+            const std::vector<int> segment_frames = frames_in(frames, segment);
+            if (segment_frames.empty()) continue;
+            std::optional<StaticSolution> solution;
+            for (const int frame : segment_frames) {
+                progress.begin_frame(frame);
+                std::unique_ptr<FrameClaim> claim = claim_frame(settings, scene, frame, key, summary);
+                if (claim) {
+                    // The segment's static pass runs (or is loaded) with its first frame rendered here.
+                    if (!solution && (method_info(settings.method).has_static_pass || reuses_photon_paths(settings)))
+                        solution = segment_solution(settings, scene, tracer, segment);
+                    if (interrupt_after == rendered_here) std::raise(SIGINT);
+                    const Stopwatch time;
+                    RenderedFrame rendered = render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);
+                    write_in_background(writer, settings, scene, frame, std::move(rendered), std::move(claim), key,
+                                        time.elapsed_s());
+                    ++rendered_here;
+                }
+                progress.finish_frame();
             }
-            progress.finish_frame();
         }
+        writer.finish();
+    } catch (...) {
+        writer.finish_quietly();  // a frame rendered before Ctrl-C is still written whole
+        throw;
     }
 }
 

@@ -39,6 +39,20 @@ inline int add_object(SceneDesc& desc, Geometry geometry, int material, Rgb emis
     return int(desc.objects.size()) - 1;
 }
 
+/// A glass ball of radius 0.5 at the origin, index 1 (no refraction, no reflection), absorbing
+/// so that light keeps `attenuation_color` over 0.5 units, in front of a large light of radiance
+/// 1 at z = -2; the camera at z = 3 sees the ball's centre with a 0.5 degree view, 4 x 4 pixels.
+/// Every camera ray travels 1 unit inside (within 0.14%): the pixels are attenuation_color^2.
+inline SceneDesc absorbing_ball_before_light(Rgb attenuation_color) {
+    SceneDesc desc = make_empty_scene({0, 0, 3}, {0, 0, 0}, 4, 4, 0.5f);
+    MaterialDesc glass{.type = MaterialType::dielectric, .ior = 1, .roughness = 0};
+    glass.attenuation_color = attenuation_color;
+    glass.attenuation_distance = 0.5f;
+    add_object(desc, Sphere{{0, 0, 0}, 0.5f}, add_material(desc, glass));
+    add_object(desc, make_quad({-5, -5, -2}, {10, 0, 0}, {0, 10, 0}), add_material(desc, {}), {1, 1, 1});
+    return desc;
+}
+
 /// Two lit rooms side by side, [0,3.4] and [4.6,8] in x, open towards the camera at z = 0, with
 /// a ball moving in the first only, 48 x 24 pixels, 2 frames. No light path passes from one room
 /// to the other, and the wall between them is thicker than the photon density estimates' radius

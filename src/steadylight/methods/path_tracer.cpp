@@ -88,6 +88,7 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         if (!hit) break;  // the background is black
         ++counts.vertices;
         const SurfacePoint sp = make_surface_point(context.scene, context.frame, ray, *hit);
+        beta *= volume_transmittance(context, sp, ray.d, hit->t);  // the segment crossed absorbing glass
         const Rgb emission = context.frame.emission[size_t(sp.object)];
 
         // Add emitted light (as bright as it is at this frame), weighted against light sampling

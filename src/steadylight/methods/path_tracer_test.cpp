@@ -65,6 +65,14 @@ TEST(PathTracer, WhiteFurnaceGivesLeOverOneMinusAlbedo) {
     }
 }
 
+/// Beer-Lambert: light that crosses 1 unit of glass that keeps c over 0.5 units is c^2.
+TEST(PathTracer, AbsorbingGlassTransmitsItsColourToThePowerOfTheDistance) {
+    const Rgb c{0.8f, 0.5f, 0.2f};
+    const Scene scene(testing::absorbing_ball_before_light(c));
+    const Rgb L = mean(render(scene, 0, {.samples_per_pixel = 4}));
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(L[i], c[i] * c[i], 0.01f * c[i] * c[i]) << "channel " << i;
+}
+
 /// A diffuse floor under a point light: L = rho / pi * I cos(theta) / d^2, no indirect light.
 TEST(PathTracer, PointLightOverDiffuseFloorMatchesInverseSquareLaw) {
     SceneDesc desc = make_empty_scene({0, 1, 0}, {0, 0, 0}, 1, 1, 1);

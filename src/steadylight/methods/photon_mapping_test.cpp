@@ -7,6 +7,7 @@
 
 #include "steadylight/output/image_writer.h"
 #include "steadylight/passes/photon_gather.h"
+#include "support/scene_builder.h"
 
 namespace steadylight {
 namespace {
@@ -30,6 +31,16 @@ PhotonMappingSettings test_settings() {
     settings.photons.caustic_photons = 20'000;
     settings.shading.samples_per_pixel = 16;
     return settings;
+}
+
+/// Camera rays through absorbing glass (the shading pass's specular chain) lose what the path
+/// tracer's do: light that crosses 1 unit of glass that keeps c over 0.5 units is c^2.
+TEST(PhotonMapping, AbsorbingGlassTransmitsItsColourToThePowerOfTheDistance) {
+    const Rgb c{0.8f, 0.5f, 0.2f};
+    const Scene scene(testing::absorbing_ball_before_light(c));
+    const Image image = render(scene, 0, test_settings()).beauty;
+    for (const Rgb& L : image.pixels)
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(L[i], c[i] * c[i], 0.01f * c[i] * c[i]) << "channel " << i;
 }
 
 /// Display-referred agreement: Y = luminance clamped at 1, as the PNG shows it. Unclamped, the

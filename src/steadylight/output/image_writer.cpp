@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "steadylight/base/atomic_file.h"
@@ -77,7 +78,9 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
                 header.channels().insert(name, Imf::Channel(imf_type(type)));
                 buffer.insert(name, Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
             }
-        Imf::OutputFile out(file.c_str(), header);
+        // OpenEXR compresses blocks of scanlines on its own threads, one per core; the bytes
+        // written do not depend on how many.
+        Imf::OutputFile out(file.c_str(), header, int(std::max(1u, std::thread::hardware_concurrency())));
         out.setFrameBuffer(buffer);
         out.writePixels(first.height);
     });

@@ -1,6 +1,8 @@
 // Tracing a frame's photons as a phase of the frame (frame_photons.h).
 #include "steadylight/passes/frame_photons.h"
 
+#include "steadylight/photons/surface_coverage.h"
+
 namespace steadylight {
 namespace {
 
@@ -31,6 +33,7 @@ TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMap
 FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
                            const StaticPhotonPaths* paths)
     : maps(trace_counted_photons(context, settings, stats, paths)),
-      irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate) {}
+      irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate,
+                 surface_coverage(context, Visibility::everything)) {}
 
 }  // namespace steadylight

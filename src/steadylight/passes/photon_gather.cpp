@@ -25,6 +25,7 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         if (!hit) return result;
         if (depth == 0) result.distance = hit->t;
         const SurfacePoint surface = make_surface_point(context.scene, context.frame, ray, *hit);
+        beta *= volume_transmittance(context, surface, ray.d, hit->t);  // the segment crossed absorbing glass
         const SurfaceBsdf surface_bsdf = bsdf_at(context, surface);
         const Bsdf* bsdf = &*surface_bsdf;
         std::unique_ptr<Bsdf> coat;
@@ -72,10 +73,19 @@ std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility
             const SurfacePoint sp = face_towards(surface, ray.d);
             return CachePoint{sp.p, sp.ns, sp.ng, camera.pixel_footprint(distance), sp.object};
         }
-        if (!bsdf.is_delta()) return std::nullopt;
+        // Rough glass is followed as smooth glass of its index would be: the camera's rays through
+        // it spread around that path, where the records then are. Other glossy surfaces end it.
+        std::unique_ptr<Bsdf> smooth;
+        const Bsdf* through = &bsdf;
+        if (!bsdf.is_delta()) {
+            const MaterialDesc& m = context.scene.desc().materials[size_t(context.scene.object(surface.object).material)];
+            if (m.type != MaterialType::dielectric) return std::nullopt;
+            smooth = make_dielectric(m.ior, m.transmittance);
+            through = smooth.get();
+        }
         // Through glass along the refracted ray (the likelier branch, unless totally reflected),
         // off mirrors along the reflected one.
-        const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
+        const std::optional<Bounce> bounce = sample_bounce(*through, surface, ray.d, {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
         if (!bounce) return std::nullopt;
         ray = bounce->ray;
     }

@@ -30,7 +30,7 @@ constexpr int max_specular_chain = 8;
 /// The diffuse surface point a pixel's centre sees (seeing what `visibility` allows), where its
 /// indirect irradiance is cached: directly, or through mirrors and glass (so that what the camera
 /// sees through them is cached too, instead of gathered anew by each camera ray that lands
-/// there); std::nullopt for background and glossy surfaces.
+/// there; rough glass as if it were smooth); std::nullopt for background and other glossy surfaces.
 std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y);
 
 /// Adds records to `cache` over the camera's image by final gathering against `photons`, at the

@@ -2,11 +2,13 @@
 #include "steadylight/passes/segment_pass.h"
 
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/hash.h"
 #include "steadylight/passes/photon_gather.h"
+#include "steadylight/photons/surface_coverage.h"
 
 namespace steadylight {
 namespace {
@@ -58,6 +60,7 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         h.add(int(m.type)), h.add(m.reflectance), h.add(m.transmittance), h.add(m.ior), h.add(m.roughness);
         h.add(m.metallic), h.add(m.specular), h.add(m.specular_color), h.add(m.alpha), h.add(int(m.alpha_mode));
         h.add(m.alpha_cutoff), h.add(m.normal_scale);
+        if (const Rgb sigma = m.absorption(); !is_black(sigma)) h.add(sigma);  // older keys stay valid without one
         for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture}) {
             h.add(t->image), h.add(t->texcoord), h.add(int(t->wrap_s)), h.add(int(t->wrap_t)), h.add(int(t->filter));
             for (const float x : {t->offset.x, t->offset.y, t->rotation, t->scale.x, t->scale.y}) h.add(x);
@@ -87,6 +90,10 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
     }
     h.add(settings.photons.global_photons), h.add(settings.photons.max_bounces);
     h.add(settings.irradiance_estimate.k), h.add(settings.irradiance_estimate.max_radius), h.add(settings.irradiance_stride);
+    // Raised whenever the estimate at the photons changes what it computes, so that cache files
+    // made by an older steadylight are not taken for this one's. 2: unbiased and boundary-corrected.
+    constexpr int photon_irradiance_revision = 2;
+    h.add(photon_irradiance_revision);
     h.add(settings.gather.theta_strata), h.add(settings.gather.phi_strata), h.add(settings.gather.fixed_directions);
     h.add(settings.cache.accuracy), h.add(settings.cache.min_spacing_px), h.add(settings.cache.max_spacing_px);
     return h.value();
@@ -98,14 +105,14 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
 
     // Static photons: the complete scene's photon paths with the dynamic objects removed.
     begin_phase("static photons");
+    std::optional<PlacedFrame> start(std::in_place, scene, tracer, bsdfs, segment.first);
     PhotonMap traced;
-    if (!paths) {
-        const PlacedFrame start(scene, tracer, bsdfs, segment.first);
-        traced = trace_photons(start.context(), settings.photons, Visibility::static_only).global;
-    }
+    if (!paths) traced = trace_photons(start->context(), settings.photons, Visibility::static_only).global;
     const PhotonMap& static_photons = paths ? paths->global.photons : traced;
-    const IrradiancePhotons irradiance(static_photons, settings.irradiance_stride, settings.irradiance_estimate);
+    const IrradiancePhotons irradiance(static_photons, settings.irradiance_stride, settings.irradiance_estimate,
+                                       surface_coverage(start->context(), Visibility::static_only));
     irradiance.compute_all();  // the static cache covers every view
+    start.reset();             // the views below place the tracer anew
 
     // The static cache over every distinct camera view of the segment.
     begin_phase("static cache");

@@ -42,6 +42,8 @@ public:
     double caustic_cpu_s() const { return double(m_caustic_ns) * 1e-9; }
 
 private:
+    Components shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, bool count_emission,
+                         const PixelSample& pixel, const LightStrata& strata, Pcg32& rng) const;
     Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
                      Pcg32& rng) const;
     Rgb trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const;
@@ -114,10 +116,21 @@ Rgb Shader::trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray&
 
 Components Shader::shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel,
                          const LightStrata& strata, Pcg32& rng) const {
-    Components c;
     const std::optional<Hit> hit = m_context.tracer.intersect(ray);
-    if (!hit) return c;
+    if (!hit) return {};
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
+    Components c = shade_hit(ray, *hit, surface, depth, count_emission, pixel, strata, rng);
+    // Light from a hit inside absorbing glass crossed its volume (the AOV layers are not light).
+    const Rgb absorbed = volume_transmittance(m_context, surface, ray.d, hit->t);
+    if (absorbed != Rgb{1, 1, 1})
+        for (Rgb* part : {&c.direct, &c.indirect, &c.caustic, &c.specular}) *part *= absorbed;
+    return c;
+}
+
+Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth,
+                             bool count_emission, const PixelSample& pixel, const LightStrata& strata,
+                             Pcg32& rng) const {
+    Components c;
     // An emitter seen by the camera is direct light (as bright as it is at this frame); seen
     // through a mirror the caller files it under specular.
     const Rgb Le = m_context.frame.emission[size_t(surface.object)];
@@ -131,7 +144,7 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
         PixelSample at = pixel;
         // Within a pixel the camera's rays spread over about one footprint; at grazing angles
         // over more, hence the factor 2.
-        at.reach = 2 * m_context.frame.camera.pixel_footprint(hit->t);
+        at.reach = 2 * m_context.frame.camera.pixel_footprint(hit.t);
         if (depth > 0) at.memo = at.caustic_memo = nullptr;
         shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, rng, c);
         if (const std::unique_ptr<Bsdf> coat = bsdf.non_diffuse_part()) c.specular = trace_coat(*coat, surface, ray, rng);
@@ -139,7 +152,12 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
     }
     // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
     // indirect light (emission is not counted twice). Mirrors and glass see emitters directly.
-    if (!bsdf.is_delta()) c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
+    // The BSDF is evaluated in the frame of the surface's own normals, as sample_bounce samples
+    // it: rough glass tells inside from outside by them (the reflective BSDFs are two-sided).
+    if (!bsdf.is_delta()) {
+        const Frame own = Frame::from_normal(surface.nm);
+        c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata, rng);
+    }
     if (depth >= m_settings.max_specular_depth) return c;
     // What the bounce sees keeps this camera ray's light strata: each camera ray still reaches
     // at most one diffuse point along each branch.

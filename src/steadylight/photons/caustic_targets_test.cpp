@@ -23,7 +23,7 @@ Scene lamp_over_mirror(float intensity) {
     add_object(desc, make_quad({-0.5f, 0, -0.5f}, {0, 0, 1}, {1, 0, 0}),
                add_material(desc, {.type = MaterialType::mirror, .reflectance = {1, 1, 1}}));
     add_object(desc, make_quad({-10, 2, -10}, {20, 0, 0}, {0, 0, 20}), white);
-    const int glass = add_material(desc, {.type = MaterialType::dielectric});
+    const int glass = add_material(desc, {.type = MaterialType::dielectric, .roughness = 0});  // smooth
     add_object(desc, Sphere{{1.5f, 0.3f, 0}, 0.3f}, glass);
     add_object(desc, Sphere{{1.7f, 0.3f, 0.2f}, 0.3f}, glass);  // its cone overlaps the first's
     desc.point_lights.push_back({.name = "lamp", .position = {0, 1, 0}, .intensity = {intensity, intensity, intensity}});

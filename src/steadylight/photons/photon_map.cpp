@@ -60,14 +60,17 @@ void PhotonMap::k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour
                           p, k, max_radius * max_radius, out);
 }
 
-Rgb PhotonMap::estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settings) const {
+Rgb PhotonMap::estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius) const {
     thread_local std::vector<Neighbour> neighbours;
     k_nearest(p, settings.k, settings.max_radius, neighbours);
+    const float r2 = estimate_radius2(neighbours, settings);
+    if (radius) *radius = std::sqrt(r2);
     if (neighbours.empty()) return {};
+    const size_t inside = int(neighbours.size()) < settings.k ? neighbours.size() : neighbours.size() - 1;
     Rgb sum;
-    for (const Neighbour& nb : neighbours)
-        if (same_side(m_photons[nb.index], n)) sum += m_photons[nb.index].power;
-    return sum / (pi * estimate_radius2(neighbours, settings));
+    for (size_t j = 0; j < inside; ++j)
+        if (same_side(m_photons[neighbours[j].index], n)) sum += m_photons[neighbours[j].index].power;
+    return sum / (pi * r2);
 }
 
 Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius) const {
@@ -83,8 +86,9 @@ Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& s
     return sum / ((1 - 2.0f / 3.0f) * pi * r2);
 }
 
-IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings)
-    : m_global(&global), m_stride(size_t(stride)), m_settings(settings) {
+IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings,
+                                     SurfaceCoverage coverage)
+    : m_global(&global), m_stride(size_t(stride)), m_settings(settings), m_coverage(std::move(coverage)) {
     const std::vector<Photon>& photons = global.photons();
     const size_t count = (photons.size() + m_stride - 1) / m_stride;
     m_n.resize(count);
@@ -103,7 +107,10 @@ Rgb IrradiancePhotons::irradiance_at(uint32_t i) const {
     if (m_state[i].load(std::memory_order_acquire) == ready) return m_E[i];
     // A pure function of the map: whichever thread computes it first, the value is the same.
     const Photon& photon = m_global->photons()[i * m_stride];
-    const Rgb E = m_global->estimate_irradiance(photon.p, photon.n, m_settings);
+    float radius = 0;
+    Rgb E = m_global->estimate_irradiance(photon.p, photon.n, m_settings, &radius);
+    // A disc barely on the surface (a thin leg's edge) is held at 1/16, what one probe gives.
+    if (m_coverage) E = E / std::max(m_coverage(photon.p, photon.n, radius, i), 1.0f / 16);
     uint8_t expected = empty;
     if (m_state[i].compare_exchange_strong(expected, writing, std::memory_order_acquire)) {
         m_E[i] = E;
@@ -138,7 +145,7 @@ bool same_photons(const PhotonMap& a, const PhotonMap& b) {
 }
 
 void validate(const DensitySettings& settings, const std::string& where) {
-    check_setting_range(where + "/k", settings.k, 1, 1'000'000);
+    check_setting_range(where + "/k", settings.k, 2, 1'000'000);  // the k-th only marks the radius
     check_setting_range(where + "/max_radius", settings.max_radius, 1e-6f, 1e30f);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,10 @@ struct DensitySettings {
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(DensitySettings, k, max_radius)
 void validate(const DensitySettings& settings, const std::string& where);
+
+/// The share of the disc of radius `radius` around `p`, in the plane of normal `n`, that lies on
+/// surfaces facing n's way (surface_coverage.h), in [0, 1]; `seed` varies how it is sampled.
+using SurfaceCoverage = std::function<float(Vec3 p, Vec3 n, float radius, uint64_t seed)>;
 
 class PhotonMap {
 public:
@@ -43,9 +48,13 @@ public:
     /// The k nearest photons to `p` within `max_radius`, nearest first.
     void k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out) const;
 
-    /// Irradiance at p (normal n) from photons arriving on n's side: sum of power / (pi r^2),
-    /// r the distance to the k-th photon (or the maximum radius when fewer are found).
-    Rgb estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settings) const;
+    /// Irradiance at p (normal n) from photons arriving on n's side: the power of the k - 1
+    /// nearest / (pi r^2), r the distance to the k-th photon (or the maximum radius, and every
+    /// photon found, when fewer are found). Leaving the k-th out makes it unbiased: for photons
+    /// of density d, pi r^2 d follows Gamma(k), whose reciprocal's mean is 1 / (k - 1). The sum
+    /// of all k, the textbook form, is too high by k / (k - 1). `radius`, when given, receives
+    /// the estimate's radius.
+    Rgb estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius = nullptr) const;
 
     /// The same estimate with a cone filter (Jensen 2001, eq. 7.7, k_cone = 1), which keeps sharp
     /// caustic edges sharper: sum of power (1 - d / r) / ((1 - 2/3) pi r^2).
@@ -73,15 +82,18 @@ private:
 /// The same photons in the same order, bit for bit (photon.h same_bits); the index aside.
 bool same_photons(const PhotonMap& a, const PhotonMap& b);
 
-/// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999), lazily:
+/// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999): the
+/// estimate at the photon, which counts itself like any other photon (right for photons of
+/// quasi-random paths, which crowd each other less than random points: docs/truth-suite.md),
+/// divided by the share of its disc on the surface (`coverage`; none: the whole disc). Lazily:
 /// each value is computed the first time a look-up needs it, then kept. A frame of the localized
 /// method looks up only near its few L_y records, so most values are never needed (compute_all()
 /// when they all are). Thread-safe;
 /// values do not depend on which thread computes them first. The map must outlive this object
-/// and stay where it is.
+/// and stay where it is, and so must what `coverage` refers to while values are computed.
 class IrradiancePhotons {
 public:
-    IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings);
+    IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings, SurfaceCoverage coverage);
 
     /// The irradiance of the nearest precomputed photon whose normal agrees with n, if any
     /// lies within `max_radius`.
@@ -99,6 +111,7 @@ private:
     const PhotonMap* m_global;
     size_t m_stride;
     DensitySettings m_settings;
+    SurfaceCoverage m_coverage;
     std::vector<Vec3> m_n;
     mutable std::vector<Rgb> m_E;
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;  // per value: empty, being written, ready

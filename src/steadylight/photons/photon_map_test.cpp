@@ -112,12 +112,45 @@ TEST(PhotonMap, UniformPhotonsGiveTheirPowerPerArea) {
     EXPECT_EQ(map.estimate_irradiance({0.5f, 0, 0.5f}, {0, -1, 0}, settings).r, 0.0f);
 }
 
+// Photons of total power 1 at uniformly random places on a unit square: irradiance 1. The mean
+// of many estimates at random points away from the square's edges is 1 within 0.5%; the
+// textbook sum of all k photons gives k / (k - 1) = 1.02 at k = 50.
+TEST(PhotonMap, DensityEstimateIsUnbiasedForRandomPhotons) {
+    const int count = 100'000;
+    Pcg32 rng(7);
+    std::vector<Photon> photons;
+    for (int i = 0; i < count; ++i)
+        photons.push_back({{rng.next_float(), 0, rng.next_float()}, {0, 1, 0}, {0, 1, 0}, {1.0f / count, 0, 0}});
+    const PhotonMap map(std::move(photons), count);
+    double sum = 0;
+    const int estimates = 20'000;
+    for (int i = 0; i < estimates; ++i) {
+        const Vec3 p{0.2f + 0.6f * rng.next_float(), 0, 0.2f + 0.6f * rng.next_float()};
+        sum += map.estimate_irradiance(p, {0, 1, 0}, {.k = 50, .max_radius = 0.5f}).r;
+    }
+    EXPECT_NEAR(sum / estimates, 1.0, 0.005);
+}
+
+// The irradiance at a photon is divided by the share of its disc on the surface: half a disc,
+// twice the estimate.
+TEST(PhotonMap, IrradiancePhotonsDivideByTheSurfacesShareOfTheDisc) {
+    std::vector<Photon> photons;
+    for (int i = 0; i < 1000; ++i)
+        photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 0, 0}});
+    const PhotonMap map(std::move(photons), 1000);
+    const DensitySettings settings{.k = 50, .max_radius = 0.5f};
+    const IrradiancePhotons whole(map, 1, settings, {});
+    const IrradiancePhotons half(map, 1, settings, [](Vec3, Vec3, float, uint64_t) { return 0.5f; });
+    const Vec3 p = map.photons()[500].p;
+    EXPECT_FLOAT_EQ(half.lookup(p, {0, 1, 0}, 0.1f)->r, 2 * whole.lookup(p, {0, 1, 0}, 0.1f)->r);
+}
+
 TEST(PhotonMap, IrradiancePhotonLookupRespectsNormals) {
     std::vector<Photon> photons;
     for (int i = 0; i < 1000; ++i)
         photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 1e-3f, 1e-3f}});
     const PhotonMap map(std::move(photons), 1000);
-    const IrradiancePhotons irradiance(map, 2, {.k = 50, .max_radius = 0.5f});
+    const IrradiancePhotons irradiance(map, 2, {.k = 50, .max_radius = 0.5f}, {});
     EXPECT_EQ(irradiance.size(), 500u);
     EXPECT_TRUE(irradiance.lookup({0.5f, 0, 0.5f}, {0, 1, 0}, 0.2f).has_value());
     EXPECT_FALSE(irradiance.lookup({0.5f, 0, 0.5f}, {0, -1, 0}, 0.2f).has_value());
@@ -132,7 +165,7 @@ TEST(PhotonMap, IrradiancePhotonsComputeOnlyWhatIsLookedUp) {
         photons.push_back({{halton(0, uint64_t(i)), 0, halton(1, uint64_t(i))}, {0, 1, 0}, {0, 1, 0}, {1e-3f, 0, 0}});
     const PhotonMap map(std::move(photons), 1000);
     const DensitySettings settings{.k = 50, .max_radius = 0.5f};
-    const IrradiancePhotons irradiance(map, 1, settings);
+    const IrradiancePhotons irradiance(map, 1, settings, {});
     EXPECT_EQ(irradiance.computed(), 0);
     const Photon& photon = map.photons()[123];
     const std::optional<Rgb> E = irradiance.lookup(photon.p, {0, 1, 0}, 0.2f);

@@ -113,5 +113,22 @@ TEST(ComposedMaps, MovingCausticTargetTracesTheCausticMapWhole) {
     expect_same_maps(composed, trace_photons(placed.context(), small), "glass_move frame 10");
 }
 
+// The same with absorbing glass (KHR_materials_volume): blender_glass's amber ball slides over
+// frames 0-12, and the paths retraced through it lose what traced ones lose. (A ball inside
+// static absorbing glass: dynamic_photons_test.cpp.)
+TEST(ComposedMaps, MovingAbsorbingGlassGivesTheTracedMaps) {
+    const Scene scene = load("blender_glass");
+    const PhotonSettings small{.global_photons = 20'000, .caustic_photons = 20'000};
+    const StaticPhotonPaths paths = trace_static_photon_paths(PreparedFrame(scene, 0).context(), small);
+    for (const int frame : {12, 6}) {
+        const PreparedFrame placed(scene, frame);
+        const ComposedPhotons composed = compose_photons(placed.context(), paths);
+        const std::string what = "blender_glass frame " + std::to_string(frame);
+        EXPECT_TRUE(composed.caustic_traced) << what;
+        EXPECT_GT(composed.retraced_paths, 0) << what;
+        expect_same_maps(composed, trace_photons(placed.context(), small), what);
+    }
+}
+
 }  // namespace
 }  // namespace steadylight

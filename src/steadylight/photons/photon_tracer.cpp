@@ -54,6 +54,8 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
         // Negative photons live in the static scene: they pass through every dynamic object.
         const Visibility visibility = path.negative ? Visibility::static_only : m_visibility;
         const std::optional<Hit> hit = m_context.tracer.intersect(path.ray, visibility);
+        // Kept with the power it starts with: the glass absorption along it depends on where it
+        // ends, which a dynamic object can change, so a resumed path applies it itself.
         if (out.segments)
             out.segments->push_back({path.ray.o, path.ray.d, hit ? hit->t : infinity, path.power, path.specular_path});
         if (!hit) return;
@@ -71,6 +73,8 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
             path.dynamic = true;
         }
 
+        // A segment that crossed absorbing glass lost some of its power on the way.
+        const Rgb absorbed = volume_transmittance(m_context, sp, path.ray.d, hit->t);
         const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
         const Bsdf* bsdf = &*surface_bsdf;
         std::unique_ptr<Bsdf> glossy_part;
@@ -85,16 +89,18 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
             }
         }
 
-        // Scatter, or be absorbed: survive with the probability of the scattered power. Always
-        // these four numbers, whatever happens next: resumed paths rely on it (photon_walk.h).
+        // Scatter, or be absorbed (by the surface or the glass behind it): survive with the
+        // probability of the scattered power. Always these four numbers, whatever happens next:
+        // resumed paths rely on it (photon_walk.h).
         const Frame frame = Frame::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
         const std::optional<BsdfSample> bs = bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
                                                           TransportMode::importance);
         if (!bs) return;
-        const float survive = std::min(1.0f, max_component(bs->weight));
+        const Rgb throughput = bs->weight * absorbed;
+        const float survive = std::min(1.0f, max_component(throughput));
         if (!(u_survive < survive)) return;
-        path.power *= bs->weight / survive;
+        path.power *= throughput / survive;
         // A bounce off a coat's or a metal's glossy lobe keeps a path caustic; one drawn from a
         // diffuse base ends that (docs/materials.md, "The photon method").
         path.specular_path = (path.bounce == 0 || path.specular_path) && !bs->diffuse;

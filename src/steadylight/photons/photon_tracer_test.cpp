@@ -65,7 +65,7 @@ TEST(PhotonTracer, GlassSphereFocusesCausticPhotonsBelowIt) {
     SceneDesc desc = make_empty_scene({0, 3, 3}, {0, 0, 0});
     const int white = add_material(desc, {});
     add_object(desc, make_quad({-5, 0, -5}, {0, 0, 10}, {10, 0, 0}), white);
-    add_object(desc, Sphere{{0, 1, 0}, 0.5f}, add_material(desc, {.type = MaterialType::dielectric}));
+    add_object(desc, Sphere{{0, 1, 0}, 0.5f}, add_material(desc, {.type = MaterialType::dielectric, .roughness = 0}));
     add_object(desc, make_quad({-0.1f, 4, -0.1f}, {0.2f, 0, 0}, {0, 0, 0.2f}), white, {100, 100, 100});
     const TracedPhotons photons = trace(Scene(std::move(desc)), {.global_photons = 0, .caustic_photons = 100'000});
     ASSERT_GT(photons.caustic.size(), 1000u);

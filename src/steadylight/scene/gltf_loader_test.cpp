@@ -389,6 +389,38 @@ TEST_F(GltfLoader, TransmissionWithIorBecomesDielectric) {
     }
 }
 
+// KHR_materials_volume: absorption when the thickness says the mesh is a volume; the roughness
+// makes rough glass.
+TEST_F(GltfLoader, VolumeGivesGlassAbsorptionAndRoughnessMakesItRough) {
+    tinygltf::Material material = make_material("Amber", {1, 1, 1});
+    material.pbrMetallicRoughness.roughnessFactor = 0.3;
+    material.extensions["KHR_materials_transmission"] = number_object("transmissionFactor", 1);
+    tinygltf::Value::Object volume{{"thicknessFactor", tinygltf::Value(0.5)},
+                                   {"attenuationDistance", tinygltf::Value(0.25)}};
+    volume["attenuationColor"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.9), tinygltf::Value(0.5), tinygltf::Value(0.2)});
+    material.extensions["KHR_materials_volume"] = tinygltf::Value(volume);
+    for (const Loaded& loaded : write_and_load(triangle_with_material(material))) {
+        SCOPED_TRACE(loaded.path);
+        const MaterialDesc& glass = loaded.desc.materials[0];
+        EXPECT_EQ(glass.type, MaterialType::dielectric);
+        EXPECT_FLOAT_EQ(glass.roughness, 0.3f);
+        EXPECT_FLOAT_EQ(glass.attenuation_distance, 0.25f);
+        expect_near(glass.attenuation_color, {0.9f, 0.5f, 0.2f});
+        // Light that crosses 0.25 units keeps the attenuation colour.
+        expect_near(glass.absorption() * -0.25f, {std::log(0.9f), std::log(0.5f), std::log(0.2f)});
+    }
+}
+
+TEST_F(GltfLoader, ThinWalledVolumeAbsorbsNothing) {
+    tinygltf::Material material = make_material("Thin", {1, 1, 1});
+    material.extensions["KHR_materials_transmission"] = number_object("transmissionFactor", 1);
+    material.extensions["KHR_materials_volume"] = number_object("attenuationDistance", 0.25);  // thickness 0
+    for (const Loaded& loaded : write_and_load(triangle_with_material(material))) {
+        SCOPED_TRACE(loaded.path);
+        EXPECT_TRUE(is_black(loaded.desc.materials[0].absorption()));
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Camera and lights
 

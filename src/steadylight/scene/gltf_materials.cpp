@@ -20,12 +20,30 @@ double extension_number(const tinygltf::ExtensionMap& extensions, const std::str
 }
 
 
+/// KHR_materials_volume on a transmissive material: Beer-Lambert absorption inside. A thickness
+/// of 0 (the default) says the material is thin-walled, which absorbs nothing; any other
+/// thickness only says that the mesh encloses a volume, since absorption follows the distance
+/// rays really travel inside (docs/materials.md, "Glass").
+void set_volume(const GltfFile& file, const tinygltf::Material& m, MaterialDesc& desc, const std::string& where) {
+    const auto it = m.extensions.find("KHR_materials_volume");
+    if (it == m.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& volume = it->second;
+    if (extension_number(m.extensions, "KHR_materials_volume", "thicknessFactor", 0) <= 0) return;
+    if (volume.Has("thicknessTexture")) file.warn_once("volume thickness textures are ignored", where);
+    const float distance = float(extension_number(m.extensions, "KHR_materials_volume", "attenuationDistance", 0));
+    if (distance > 0) desc.attenuation_distance = distance;  // absent (or invalid): infinite, no absorption
+    const tinygltf::Value& colour = volume.Get("attenuationColor");
+    const auto channel = [&](int c) { return std::clamp(float(colour.Get(c).GetNumberAsDouble()), 0.0f, 1.0f); };
+    if (colour.IsArray() && colour.ArrayLen() >= 3) desc.attenuation_color = {channel(0), channel(1), channel(2)};
+}
+
 void warn_ignored_features(const GltfFile& file, const tinygltf::Material& m,
                            const std::string& where) {
     if (m.occlusionTexture.index >= 0)
         file.warn_once("occlusion maps are ignored (occlusion is ray traced)", where);
     static const std::set<std::string> supported = {"KHR_materials_transmission", "KHR_materials_ior",
-                                                    "KHR_materials_emissive_strength", "KHR_materials_specular"};
+                                                    "KHR_materials_emissive_strength", "KHR_materials_specular",
+                                                    "KHR_materials_volume"};
     for (const auto& [name, value] : m.extensions)
         if (!supported.contains(name))
             file.warn_once("material extension " + name + " is ignored", where);
@@ -140,8 +158,9 @@ MaterialDesc convert_material(const GltfFile& file, const tinygltf::Material& m,
         spdlog::warn("{}: {}: ior {} is not supported, using 1.5", file.path, where, desc.ior);
         desc.ior = 1.5f;
     }
-    if (pbr.roughnessFactor > 0.05 && m.extensions.contains("KHR_materials_transmission"))
-        file.warn_once("rough transmission is rendered as smooth glass", where);
+    // Rough glass (make_bsdf makes glass below GGX's smallest roughness smooth).
+    desc.roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
+    set_volume(file, m, desc, where);
     return desc;
 }
 

@@ -134,6 +134,10 @@ MaterialDesc parse_material(const std::string& name, const JsonObject& json) {
         m.reflectance = {1, 1, 1};
     } else if (type == "dielectric") {
         m.type = MaterialType::dielectric;
+        m.roughness = 0;  // smooth unless the scene says otherwise
+        m.attenuation_color = json.rgb("attenuation_color", m.attenuation_color);
+        m.attenuation_distance = json.number("attenuation_distance", m.attenuation_distance);
+        if (!(m.attenuation_distance > 0)) json.fail("attenuation_distance", "must be positive");
     } else if (type == "glossy") {
         m.type = MaterialType::glossy;
         m.reflectance = {0.9f, 0.9f, 0.9f};
@@ -154,9 +158,12 @@ MaterialDesc parse_material(const std::string& name, const JsonObject& json) {
     for (int c = 0; c < 3; ++c) {
         if (m.reflectance[c] < 0 || m.reflectance[c] > 1) json.fail("reflectance", "must lie in [0, 1]");
         if (m.transmittance[c] < 0 || m.transmittance[c] > 1) json.fail("transmittance", "must lie in [0, 1]");
+        if (m.attenuation_color[c] < 0 || m.attenuation_color[c] > 1) json.fail("attenuation_color", "must lie in [0, 1]");
     }
     if (!(m.ior > 0)) json.fail("ior", "must be positive");
-    if (!(m.roughness > 0 && m.roughness <= 1)) json.fail("roughness", "must lie in (0, 1]");
+    const bool smooth_allowed = m.type == MaterialType::dielectric;
+    if (!((m.roughness > 0 || (smooth_allowed && m.roughness == 0)) && m.roughness <= 1))
+        json.fail("roughness", smooth_allowed ? "must lie in [0, 1]" : "must lie in (0, 1]");
     json.warn_unread();
     return m;
 }
@@ -321,6 +328,13 @@ void validate_light_track(const std::optional<Track<Rgb>>& track, const std::str
 }
 
 }  // namespace
+
+Rgb MaterialDesc::absorption() const {
+    if (type != MaterialType::dielectric || !(attenuation_distance > 0) || std::isinf(attenuation_distance)) return {};
+    // A black channel absorbs all of its light within a few attenuation distances.
+    const auto sigma = [&](float colour) { return -std::log(std::max(colour, 1e-6f)) / attenuation_distance; };
+    return {sigma(attenuation_color.r), sigma(attenuation_color.g), sigma(attenuation_color.b)};
+}
 
 bool is_ever_lit(const Track<Rgb>& track) {
     return std::any_of(track.values.begin(), track.values.end(), [](Rgb value) { return !is_black(value); });

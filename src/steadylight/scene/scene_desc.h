@@ -3,6 +3,7 @@
 // (scene.h) prepares it for rendering. This is the first stage of the pipeline (DESIGN.md §3).
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -28,7 +29,11 @@ struct MaterialDesc {
     Rgb reflectance{0.8f, 0.8f, 0.8f};  // lambert albedo; mirror and glossy: normal-incidence colour; pbr: base colour
     Rgb transmittance{1, 1, 1};         // dielectric: colour filter on refraction
     float ior = 1.5f;                   // dielectric: index of refraction inside / outside; pbr: the coat's
-    float roughness = 0.3f;             // glossy and pbr: GGX alpha = roughness^2
+    float roughness = 0.3f;             // glossy, pbr and dielectric: GGX alpha = roughness^2 (dielectric: 0 is smooth)
+    // dielectric: Beer-Lambert absorption inside (KHR_materials_volume): light that travels
+    // attenuation_distance (scene units) inside keeps attenuation_color of itself.
+    Rgb attenuation_color{1, 1, 1};
+    float attenuation_distance = std::numeric_limits<float>::infinity();
     float metallic = 0;                 // pbr: 1 conductor, 0 coated diffuse (blended between)
     float specular = 1;                 // pbr: scales the coat's Fresnel (KHR_materials_specular); 0: no coat
     float specular_color = 1;           // pbr: scales the coat's normal-incidence Fresnel only
@@ -45,6 +50,9 @@ struct MaterialDesc {
         return base_color_texture.is_set() || metallic_roughness_texture.is_set() || normal_texture.is_set();
     }
     bool has_cutouts() const { return alpha_mode != AlphaMode::opaque; }
+    /// The absorption coefficient sigma_a = -ln(attenuation_color) / attenuation_distance per
+    /// scene unit; black when the material absorbs nothing (not a dielectric, or no volume).
+    Rgb absorption() const;
 };
 
 /// Triangles in object space. Every per-vertex array is empty or one per position.

@@ -165,6 +165,25 @@ TEST_F(SceneFiles, LoadsObjMeshRelativeToTheScene) {
     EXPECT_EQ(std::get<TriangleMesh>(desc.objects[0].geometry).indices.size(), 3u);
 }
 
+// Glass is smooth unless it says otherwise; rough and absorbing glass take their keys.
+TEST_F(SceneFiles, GlassIsSmoothByDefaultAndTakesRoughnessAndAbsorption) {
+    const SceneDesc desc = load_scene_desc(write("glass.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+        "materials": {"clear": {"type": "dielectric"},
+                      "amber": {"type": "dielectric", "roughness": 0.2, "attenuation_color": [0.9, 0.5, 0.2],
+                                "attenuation_distance": 0.25}},
+        "objects": [{"shape": {"type": "sphere", "radius": 1}, "material": "clear"},
+                    {"shape": {"type": "sphere", "radius": 1}, "material": "amber"}]})"));
+    const MaterialDesc& clear = desc.materials[size_t(desc.objects[0].material)];
+    const MaterialDesc& amber = desc.materials[size_t(desc.objects[1].material)];
+    EXPECT_EQ(clear.roughness, 0);
+    EXPECT_TRUE(is_black(clear.absorption()));
+    EXPECT_FLOAT_EQ(amber.roughness, 0.2f);
+    EXPECT_NEAR(amber.absorption().b, -std::log(0.2f) / 0.25f, 1e-4f);
+    expect_error(write("bad.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+        "materials": {"glass": {"type": "dielectric", "attenuation_distance": 0}}, "objects": []})"),
+                 {"bad.json:/materials/glass/attenuation_distance", "positive"});
+}
+
 TEST_F(SceneFiles, MissingFileIsAnError) { expect_error((m_dir / "nope.json").string(), {"nope.json", "cannot open"}); }
 
 TEST_F(SceneFiles, SyntaxErrorNamesTheFile) { expect_error(write("bad.json", "{\"camera\": "), {"bad.json", "invalid JSON"}); }

@@ -61,6 +61,9 @@ struct PbrParams {
 std::unique_ptr<Bsdf> make_lambert(Rgb reflectance);
 std::unique_ptr<Bsdf> make_mirror(Rgb reflectance);
 std::unique_ptr<Bsdf> make_dielectric(float ior, Rgb transmittance);
+/// Rough glass (GGX microfacets, Walter et al. 2007); `roughness` is clamped to
+/// [min_pbr_roughness, 1]. Its eval() is f for radiance; sample() follows `mode`.
+std::unique_ptr<Bsdf> make_rough_dielectric(float ior, float roughness, Rgb transmittance);
 std::unique_ptr<Bsdf> make_glossy(Rgb reflectance, float roughness);
 std::unique_ptr<Bsdf> make_pbr(const PbrParams& params);
 /// The BSDF of an untextured material (a textured one is made per point: material_eval.h).

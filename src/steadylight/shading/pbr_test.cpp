@@ -9,7 +9,7 @@
 #include "steadylight/base/rng.h"
 #include "steadylight/base/sampling.h"
 #include "steadylight/shading/bsdf.h"
-#include "support/chi_square.h"
+#include "support/bsdf_checks.h"
 
 namespace steadylight {
 namespace {
@@ -24,16 +24,7 @@ PbrParams plastic(Rgb base, float roughness) { return {.base = base, .metallic =
 
 /// Directional albedo by stratified samples of the BSDF's own sampling (largest channel).
 double albedo(const Bsdf& bsdf, Vec3 wo, int strata = 160) {
-    Pcg32 rng(21);
-    double sum = 0;
-    for (int a = 0; a < strata; ++a)
-        for (int b = 0; b < strata; ++b) {
-            const Vec2 u{(float(a) + 0.5f) / float(strata), (float(b) + 0.5f) / float(strata)};
-            const float u_lobe = rng.next_float();
-            const std::optional<BsdfSample> s = bsdf.sample(wo, u, u_lobe, TransportMode::radiance);
-            if (s) sum += max_component(s->weight);
-        }
-    return sum / (double(strata) * strata);
+    return max_component(testing::directional_albedo(bsdf, wo, TransportMode::radiance, strata));
 }
 
 // The white furnace: a white metal and a white coated base reflect all the light that reaches
@@ -111,14 +102,7 @@ TEST(Pbr, SamplesFollowTheirPdf) {
     for (const PbrParams& p : {metal({1, 1, 1}, 0.5f), plastic({0.5f, 0.5f, 0.5f}, 0.4f)})
         for (const float cos_theta : {0.3f, 0.9f}) {
             const Vec3 wo = direction(cos_theta, 2.0f);
-            const auto bsdf = make_pbr(p);
-            const auto sample = [&](Pcg32& rng) -> std::optional<Vec3> {
-                const Vec2 u = rng.next_vec2();
-                const std::optional<BsdfSample> bs = bsdf->sample(wo, u, rng.next_float(), TransportMode::radiance);
-                return bs ? std::optional(bs->wi) : std::nullopt;
-            };
-            const testing::Chi2 chi2 =
-                testing::chi2_test(sample, [&](Vec3 wi) { return bsdf->pdf(wo, wi); }, -1, 16, 32, 200'000, 12);
+            const testing::Chi2 chi2 = testing::bsdf_chi2(*make_pbr(p), wo);
             ASSERT_GT(chi2.dof, 30);
             EXPECT_LT(chi2.statistic, testing::chi2_bound(chi2.dof)) << "cos theta " << cos_theta;
         }

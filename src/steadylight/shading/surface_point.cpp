@@ -1,5 +1,7 @@
 #include "steadylight/shading/surface_point.h"
 
+#include <cmath>
+
 namespace steadylight {
 namespace {
 
@@ -81,6 +83,14 @@ SurfaceBsdf bsdf_at(const FrameContext& context, const SurfacePoint& sp) {
     params.metallic = mr.x;
     params.roughness = mr.y;
     return SurfaceBsdf(make_pbr(params));
+}
+
+Rgb volume_transmittance(const FrameContext& context, const SurfacePoint& sp, Vec3 d, float distance) {
+    if (dot(d, sp.ng) <= 0) return {1, 1, 1};  // arriving from outside
+    const Rgb sigma = context.scene.desc().materials[size_t(context.scene.object(sp.object).material)].absorption();
+    if (is_black(sigma)) return {1, 1, 1};
+    const float length_travelled = distance * length(d);
+    return {std::exp(-sigma.r * length_travelled), std::exp(-sigma.g * length_travelled), std::exp(-sigma.b * length_travelled)};
 }
 
 Rgb emitted_radiance_at(const FrameContext& context, const SurfacePoint& sp, Vec3 w) {

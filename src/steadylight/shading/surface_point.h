@@ -52,6 +52,13 @@ struct Bounce {
 std::optional<Bounce> sample_bounce(const Bsdf& bsdf, const SurfacePoint& sp, Vec3 d, Vec2 u, float u_lobe,
                                     TransportMode mode);
 
+/// \brief Beer-Lambert transmittance of the segment a ray (direction `d`) travelled to its hit
+/// `sp` at distance `distance`: exp(-sigma_a distance) when it arrives at the back of an
+/// absorbing dielectric, that is, it travelled inside that object's volume; white otherwise.
+/// Every tracer applies it at every hit, so that the whole distance travelled inside glass is
+/// absorbed, whichever surface the segment began on (its limits: docs/materials.md, "Glass").
+Rgb volume_transmittance(const FrameContext& context, const SurfacePoint& sp, Vec3 d, float distance);
+
 /// Radiance that the surface at `sp` emits towards `w` at this frame: its object's emission
 /// tinted by its material's emissive texture.
 Rgb emitted_radiance_at(const FrameContext& context, const SurfacePoint& sp, Vec3 w);
