@@ -8,38 +8,19 @@
 // Run: build/animation_bench [--scenes ball,table] [--frames N] [--size WxH]
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <map>
-#include <sstream>
 
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/methods/photon_mapping.h"
 #include "steadylight/passes/frame_pass.h"
 #include "steadylight/quality/image_error.h"
+#include "scene_bench_options.h"
 
 using namespace steadylight;
 
 namespace {
 
-struct Options {
-    std::vector<std::string> scenes{"ball", "table"};
-    int frames = 60;
-    int width = 320, height = 240;
-};
-
-Options parse(int argc, char** argv) {
-    Options o;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--frames")) o.frames = std::atoi(argv[i + 1]);
-        if (!std::strcmp(argv[i], "--size")) std::sscanf(argv[i + 1], "%dx%d", &o.width, &o.height);
-        if (!std::strcmp(argv[i], "--scenes")) {
-            o.scenes.clear();
-            std::stringstream list(argv[i + 1]);
-            for (std::string name; std::getline(list, name, ',');) o.scenes.push_back(name);
-        }
-    }
-    return o;
-}
+using Options = SceneBenchOptions;
 
 /// One method's figures summed over the frames.
 struct Totals {
@@ -104,7 +85,7 @@ void run_scene(const std::string& name, const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Options options = parse(argc, argv);
+    const Options options = parse_scene_bench_options(argc, argv, 60);
     for (const std::string& scene : options.scenes) run_scene(scene, options);
     return 0;
 }

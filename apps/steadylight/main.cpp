@@ -128,6 +128,9 @@ void add_render_options(CLI::App* command, RenderSettings& settings, RawOptions&
         ->capture_default_str();
     command->add_flag("!--no-progress", settings.show_progress, "No progress output");
     command->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
+    command->add_flag("!--no-reuse", settings.reuse,
+                     "photon, localized, frozen: trace every photon path in every frame instead of retracing only "
+                     "the static paths that dynamic objects meet (the same images, slower; for comparison)");
 }
 
 /// The console and resume options of `render` and `bake`.

@@ -44,11 +44,32 @@ Scene load_scene(const RenderSettings& settings) {
     return scene;
 }
 
-/// The segment pass of `segment`, from its cache file when that matches.
-StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
+/// The segment pass of `segment`, from its cache file when that matches; it keeps `paths`.
+StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment,
+                           std::shared_ptr<const StaticPhotonPaths> paths = nullptr) {
     const std::string file = static_cache_file(settings.cache_file, settings.out_dir, scene, segment);
     return load_or_run_segment_pass(scene, tracer, segment, settings.photon, file,
-                                    settings.require_cache ? CacheUse::require : CacheUse::load_or_compute);
+                                    settings.require_cache ? CacheUse::require : CacheUse::load_or_compute, std::move(paths));
+}
+
+/// Whether frames compose their photon maps from static photon paths (photon_paths.h).
+bool reuses_photon_paths(const RenderSettings& settings) {
+    return settings.reuse && method_info(settings.method).reads.photon;
+}
+
+/// What every frame of `segment` starts from: the method's static pass (or its file), and the
+/// static photon paths when frames reuse them. Only for methods that have either.
+StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
+    std::shared_ptr<const StaticPhotonPaths> paths;
+    if (reuses_photon_paths(settings)) {
+        const Stopwatch time;
+        paths = std::make_shared<const StaticPhotonPaths>(trace_segment_photon_paths(scene, tracer, segment, settings.photon.photons));
+        spdlog::info("static photon paths: {} global and {} caustic paths, {} rays, {:.1f} MB, traced in {:.2f} s",
+                     paths->global.count, paths->caustic.count, paths->global.segments.size() + paths->caustic.segments.size(),
+                     double(paths->bytes()) / 1e6, time.elapsed_s());
+    }
+    if (method_info(settings.method).has_static_pass) return static_pass(settings, scene, tracer, segment, std::move(paths));
+    return {IrradianceCache(settings.photon.cache), 0, false, "", std::move(paths)};
 }
 
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
@@ -191,8 +212,8 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
                 std::unique_ptr<FrameClaim> claim = claim_frame(settings, scene, frame, key, summary);
                 if (claim) {
                     // The segment's static pass runs (or is loaded) with its first frame rendered here.
-                    if (!solution && method_info(settings.method).has_static_pass)
-                        solution = static_pass(settings, scene, tracer, segment);
+                    if (!solution && (method_info(settings.method).has_static_pass || reuses_photon_paths(settings)))
+                        solution = segment_solution(settings, scene, tracer, segment);
                     if (interrupt_after == rendered_here) std::raise(SIGINT);
                     const Stopwatch time;
                     RenderedFrame rendered = render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);

@@ -69,8 +69,10 @@ RenderedFrame render_frozen(const FrameContext& context, const StaticSolution* s
                     localized_layers);
 }
 
-RenderedFrame render_photon(const FrameContext& context, const StaticSolution*, const MethodSettings& settings) {
-    return rendered(Method::photon, render_photon_mapped(context, settings.photon), photon_layers);
+RenderedFrame render_photon(const FrameContext& context, const StaticSolution* solution, const MethodSettings& settings) {
+    return rendered(Method::photon,
+                    render_photon_mapped(context, settings.photon, solution ? solution->photon_paths.get() : nullptr),
+                    photon_layers);
 }
 
 RenderedFrame render_path(const FrameContext& context, const StaticSolution*, const MethodSettings& settings) {

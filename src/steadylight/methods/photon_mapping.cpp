@@ -7,14 +7,15 @@
 
 namespace steadylight {
 
-PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings) {
+PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings,
+                                 const StaticPhotonPaths* paths) {
     const Stopwatch total;
     PhotonFrame out;
     FrameStats& stats = out.stats;
     stats.frame = context.frame.frame;
 
     // Pass 1: photons.
-    const FramePhotons traced(context, settings, stats);
+    const FramePhotons traced(context, settings, stats, paths);
     const IrradiancePhotons& irradiance_photons = traced.irradiance;
 
     // Pass 2a: irradiance precomputed at a share of the global photons, then the irradiance

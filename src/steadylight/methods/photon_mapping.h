@@ -8,6 +8,7 @@
 #include "steadylight/base/image.h"
 #include "steadylight/passes/frame_stats.h"
 #include "steadylight/passes/photon_mapping_settings.h"
+#include "steadylight/photons/photon_paths.h"
 #include "steadylight/shading/frame_context.h"
 
 namespace steadylight {
@@ -19,6 +20,9 @@ struct PhotonFrame {
     FrameStats stats;
 };
 
-PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings);
+/// With `paths` (the segment's static photon paths), the photons are composed from them rather
+/// than all traced again: the same maps, so the same frame (photon_paths.h).
+PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappingSettings& settings,
+                                 const StaticPhotonPaths* paths = nullptr);
 
 }  // namespace steadylight

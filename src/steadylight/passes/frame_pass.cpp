@@ -71,7 +71,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     const float max_radius = photon.irradiance_estimate.max_radius;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
-    const FramePhotons traced(context, photon, stats);
+    const FramePhotons traced(context, photon, stats, solution.photon_paths.get());
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance = traced.irradiance;
 

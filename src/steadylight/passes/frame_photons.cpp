@@ -6,21 +6,33 @@
 namespace steadylight {
 namespace {
 
+/// The photons traced whole, or composed from the static paths; counts the paths retraced.
+TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
+                         const StaticPhotonPaths* paths) {
+    if (!paths) return trace_photons(context, settings.photons);
+    ComposedPhotons composed = compose_photons(context, *paths);
+    stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
+    return std::move(composed.maps);
+}
+
 /// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
-TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats) {
-    TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s, [&] { return trace_photons(context, settings.photons); });
+TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
+                                    const StaticPhotonPaths* paths) {
+    TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s, [&] { return frame_maps(context, settings, stats, paths); });
     stats.global_photons_emitted = maps.global.emitted();
     stats.global_photons_stored = long(maps.global.size());
     stats.caustic_photons_emitted = maps.caustic.emitted();
     stats.caustic_photons_stored = long(maps.caustic.size());
     stats.dynamic_photons_stored = long(maps.dynamic.size());
+    if (!paths) stats.retraced_photon_paths = maps.global.emitted() + maps.caustic.emitted();  // every one
     return maps;
 }
 
 }  // namespace
 
-FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats)
-    : maps(trace_counted_photons(context, settings, stats)),
+FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
+                           const StaticPhotonPaths* paths)
+    : maps(trace_counted_photons(context, settings, stats, paths)),
       irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate,
                  surface_coverage(context, Visibility::everything)) {}
 

@@ -5,15 +5,18 @@
 
 #include "steadylight/passes/frame_stats.h"
 #include "steadylight/passes/photon_mapping_settings.h"
-#include "steadylight/photons/photon_tracer.h"
+#include "steadylight/photons/photon_paths.h"
 
 namespace steadylight {
 
 /// A frame's photon maps and the irradiance at its photons. Construction traces the photons as
-/// the phase "photons" and records the counts and the time in `stats`. Never copied or moved:
-/// `irradiance` refers to `maps.global`, and to `context`, which must outlive it.
+/// the phase "photons" and records the counts and the time in `stats`: all of them, or with
+/// `paths` (the segment's static photon paths) only those the dynamic objects change, for the
+/// same maps (photon_paths.h). Never copied or moved: `irradiance` refers to `maps.global`, and
+/// to `context`, which must outlive it.
 struct FramePhotons {
-    FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats);
+    FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
+                 const StaticPhotonPaths* paths = nullptr);
     FramePhotons(const FramePhotons&) = delete;
     FramePhotons& operator=(const FramePhotons&) = delete;
 

@@ -40,6 +40,7 @@ void for_each_later_json_field(Stats& s, Visit&& visit) {
     visit("/path/camera_samples", s.camera_samples);
     visit("/path/rays", s.path_rays);
     visit("/path/vertices", s.path_vertices);
+    visit("/photons/retraced_paths", s.retraced_photon_paths);
 }
 
 /// Whether the frame ran photon-mapping passes: photons, records, gathers or their phases' time.
@@ -49,9 +50,10 @@ bool has_photon_mapping_figures(const FrameStats& s) {
 }
 
 std::string summarize_photon_mapping(const FrameStats& s) {
-    std::string text = fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M | photons {:.2f} s, cache {:.2f} s, ",
+    std::string text = fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M, photon paths traced {} | "
+                                   "photons {:.2f} s, cache {:.2f} s, ",
                                    s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
-                                   double(s.gather_rays) / 1e6, s.photon_tracing_s, s.cache_s);
+                                   double(s.gather_rays) / 1e6, s.retraced_photon_paths, s.photon_tracing_s, s.cache_s);
     if (s.influence_s > 0 || s.correction_s > 0)  // the localized method's own phases
         text += fmt::format("influence {:.2f} s, L_t {:.2f} s, ", s.influence_s, s.correction_s);
     return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.direct_s, s.caustics_s);

@@ -21,6 +21,8 @@ struct FrameStats {
     long caustic_photons_emitted = 0;
     long caustic_photons_stored = 0;
     long dynamic_photons_stored = 0;  // localized: positive and negative photons of the dynamic map
+    long retraced_photon_paths = 0;   // photon paths traced this frame: all, or with reuse those
+                                      // that meet a dynamic object (from there on)
     long irradiance_photons = 0;      // photons whose irradiance was computed (lazily, for gathers)
     long irradiance_records = 0;      // computed for this frame (localized: the dynamic cache, L_y)
     long static_records = 0;          // localized: records of the segment's static cache

@@ -26,6 +26,7 @@ FrameStats photon_stats() {
     stats.global_photons_emitted = 20'000;
     stats.global_photons_stored = 15'000;
     stats.irradiance_records = 300;
+    stats.retraced_photon_paths = 1234;
     stats.photon_tracing_s = 0.5;
     stats.cache_s = 1.0;
     stats.direct_s = 0.75;
@@ -41,16 +42,18 @@ TEST(FrameStats, PathFiguresRoundTripThroughJson) {
     EXPECT_EQ(nlohmann::json(json.get<FrameStats>()), json);
 }
 
-/// A stats.json written before the path tracer had statistics lacks the "path" figures: it
-/// still reads, with zeros there.
+/// A stats.json written before the path tracer had statistics lacks the "path" figures (and
+/// one from before photon paths were reused, the paths traced): it still reads, with zeros there.
 TEST(FrameStats, OlderFileWithoutPathFiguresReadsThemAsZero) {
     nlohmann::json older = photon_stats();
     older.erase("path");
+    older["photons"].erase("retraced_paths");
     ASSERT_FALSE(older.contains("path"));
     const FrameStats read = older.get<FrameStats>();
     EXPECT_EQ(read.camera_samples, 0);
     EXPECT_EQ(read.path_rays, 0);
     EXPECT_EQ(read.path_vertices, 0);
+    EXPECT_EQ(read.retraced_photon_paths, 0);
     EXPECT_EQ(read.irradiance_records, 300);
     EXPECT_EQ(read.total_s, 2.25);
 }
@@ -72,7 +75,7 @@ TEST(FrameStats, SummaryShowsTheFiguresTheFrameHas) {
     };
     const Case cases[] = {
         {path_stats(), {"camera samples 2.00M", "rays 9.00M (4.50 a sample)", "path length 2.50 vertices"}, {"photons"}},
-        {photon_stats(), {"photons 15k/0k stored, records 300", "shading 0.75 s"}, {"camera samples", "influence"}},
+        {photon_stats(), {"photons 15k/0k stored, records 300", "photon paths traced 1234", "shading 0.75 s"}, {"camera samples", "influence"}},
     };
     for (const Case& c : cases) {
         const std::string line = summarize(c.stats);

@@ -41,8 +41,9 @@ int segment_index(const Scene& scene, const Segment& segment) {
     return int(found - segments.begin());
 }
 
-StaticSolution loaded_solution(CacheFileLoad& load, const Stopwatch& time, const std::string& file) {
-    StaticSolution solution{std::move(*load.cache), time.elapsed_s(), true, ""};
+StaticSolution loaded_solution(CacheFileLoad& load, const Stopwatch& time, const std::string& file,
+                               std::shared_ptr<const StaticPhotonPaths> paths) {
+    StaticSolution solution{std::move(*load.cache), time.elapsed_s(), true, "", std::move(paths)};
     spdlog::info("static cache: {} records loaded from {} in {:.3f} s", solution.records(), file, solution.seconds);
     return solution;
 }
@@ -51,11 +52,11 @@ StaticSolution loaded_solution(CacheFileLoad& load, const Stopwatch& time, const
 
 StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
                                         const PhotonMappingSettings& settings, const std::string& file,
-                                        CacheUse use) {
+                                        CacheUse use, std::shared_ptr<const StaticPhotonPaths> paths) {
     const Stopwatch time;
     const uint64_t inputs = static_inputs_hash(scene, segment, settings);
     CacheFileLoad load = read_cache_file(file, inputs);
-    if (load.cache) return loaded_solution(load, time, file);
+    if (load.cache) return loaded_solution(load, time, file, paths);
     if (use == CacheUse::require)
         throw InputError(file, fmt::format("the static cache of frames {}-{} is not usable ({}), and --require-cache "
                                            "does not compute it; bake it first with the same settings (steadylight "
@@ -64,8 +65,8 @@ StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, c
     // Another process may be computing it: wait for its lock, then look again.
     const FileLock lock(cache_lock_file(file));
     load = read_cache_file(file, inputs);
-    if (load.cache) return loaded_solution(load, time, file);
-    StaticSolution solution{run_segment_pass(scene, tracer, segment, settings), 0, false, load.rejection};
+    if (load.cache) return loaded_solution(load, time, file, paths);
+    StaticSolution solution{run_segment_pass(scene, tracer, segment, settings, paths.get()), 0, false, load.rejection, paths};
     write_cache_file(file, solution.cache, inputs);
     solution.seconds = time.elapsed_s();
     spdlog::info("static cache: {} records computed in {:.2f} s ({}), saved to {}", solution.records(), solution.seconds,

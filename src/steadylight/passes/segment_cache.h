@@ -7,18 +7,22 @@
 // missing or stale file is an error rather than a second computation.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "steadylight/passes/segment_pass.h"
+#include "steadylight/photons/photon_paths.h"
 
 namespace steadylight {
 
-/// What the segment pass leaves for every frame of its segment: the static irradiance cache.
+/// What the segment pass leaves for every frame of its segment: the static irradiance cache,
+/// and the static photon paths when frames reuse them.
 struct StaticSolution {
     IrradianceCache cache;
     double seconds = 0;     // to compute or to load it
     bool loaded = false;    // read from the cache file instead of computed
     std::string file_note;  // why the file was not used, when it was not
+    std::shared_ptr<const StaticPhotonPaths> photon_paths;  // null: frames trace all their photons
 
     long records() const { return long(cache.records().size()); }
 };
@@ -37,9 +41,12 @@ enum class CacheUse {
 /// The static solution of `segment`: from `file` when that matches its inputs, else computed
 /// (run_segment_pass) and saved to `file`, holding `.<file name>.lock` meanwhile so that other
 /// processes wait and load it rather than compute it again; with CacheUse::require an
-/// InputError instead. Logs which, with the record count.
+/// InputError instead. Logs which, with the record count. `paths`, when given, are the
+/// segment's static photon paths: the solution keeps them, and a computed cache starts from
+/// their photons rather than tracing its own.
 StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
                                         const PhotonMappingSettings& settings, const std::string& file,
-                                        CacheUse use = CacheUse::load_or_compute);
+                                        CacheUse use = CacheUse::load_or_compute,
+                                        std::shared_ptr<const StaticPhotonPaths> paths = nullptr);
 
 }  // namespace steadylight

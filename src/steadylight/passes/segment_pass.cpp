@@ -100,13 +100,15 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
 }
 
 IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                 const PhotonMappingSettings& settings) {
+                                 const PhotonMappingSettings& settings, const StaticPhotonPaths* paths) {
     const Bsdfs bsdfs = make_bsdfs(scene);
 
     // Static photons: the complete scene's photon paths with the dynamic objects removed.
     begin_phase("static photons");
     std::optional<PlacedFrame> start(std::in_place, scene, tracer, bsdfs, segment.first);
-    const PhotonMap static_photons = trace_photons(start->context(), settings.photons, Visibility::static_only).global;
+    PhotonMap traced;
+    if (!paths) traced = trace_photons(start->context(), settings.photons, Visibility::static_only).global;
+    const PhotonMap& static_photons = paths ? paths->global.photons : traced;
     const IrradiancePhotons irradiance(static_photons, settings.irradiance_stride, settings.irradiance_estimate,
                                        surface_coverage(start->context(), Visibility::static_only));
     irradiance.compute_all();  // the static cache covers every view
@@ -121,6 +123,14 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
                                    Visibility::static_only, {}});
     }
     return cache;
+}
+
+StaticPhotonPaths trace_segment_photon_paths(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                             const PhotonSettings& settings) {
+    begin_phase("static photon paths");
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PlacedFrame start(scene, tracer, bsdfs, segment.first);
+    return trace_static_photon_paths(start.context(), settings);
 }
 
 }  // namespace steadylight

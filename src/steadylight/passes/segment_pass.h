@@ -9,6 +9,7 @@
 
 #include "steadylight/irradiance/irradiance_cache.h"
 #include "steadylight/passes/photon_mapping_settings.h"
+#include "steadylight/photons/photon_paths.h"
 #include "steadylight/scene/scene.h"
 #include "steadylight/trace/ray_tracer.h"
 
@@ -20,8 +21,14 @@ namespace steadylight {
 uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const PhotonMappingSettings& settings);
 
 /// The static irradiance cache of `segment`: static photons, then records over every distinct
-/// camera view. Moves `tracer` through the segment's frames.
+/// camera view. Moves `tracer` through the segment's frames. With `paths` (the segment's static
+/// photon paths, traced with settings.photons) their global map serves as the static photons.
 IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                 const PhotonMappingSettings& settings);
+                                 const PhotonMappingSettings& settings, const StaticPhotonPaths* paths = nullptr);
+
+/// The static photon paths of `segment` (photon_paths.h), which its frames compose their
+/// photon maps from instead of tracing them all. Moves `tracer` to the segment's first frame.
+StaticPhotonPaths trace_segment_photon_paths(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                             const PhotonSettings& settings);
 
 }  // namespace steadylight

@@ -37,6 +37,9 @@ public:
     /// The pdf sample() gives to direction `d` from `p` (zero where it does not aim).
     float pdf(Vec3 p, Vec3 d) const;
 
+    /// Same targets: photons leave the lights the same way.
+    bool operator==(const CausticTargets&) const = default;
+
 private:
     struct Cone {
         Vec3 axis;

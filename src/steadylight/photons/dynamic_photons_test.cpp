@@ -1,6 +1,7 @@
 // The dynamic photon map's rules (paper §3.1, Figure 2; DESIGN.md §2.1), checked on small scenes.
 #include <gtest/gtest.h>
 
+#include "steadylight/photons/photon_paths.h"
 #include "steadylight/photons/photon_tracer.h"
 #include "support/scene_builder.h"
 
@@ -15,7 +16,7 @@ constexpr PhotonSettings settings{.global_photons = 40'000, .caustic_photons = 0
 
 /// A closed white box [-2,2] x [0,4] x [-2,2] lit by a small downward quad light under its
 /// ceiling; `dynamic` spheres (centre, radius) are added as dynamic objects.
-Scene box_scene(const std::vector<std::pair<Vec3, float>>& dynamic) {
+SceneDesc box_desc(const std::vector<std::pair<Vec3, float>>& dynamic) {
     SceneDesc desc = make_empty_scene({0, 2, -1.9f}, {0, 2, 0});
     const int white = add_material(desc, {.reflectance = {0.7f, 0.7f, 0.7f}});
     add_object(desc, make_box({0, 2, 0}, {4, 4, 4}), white);  // seen from inside: two-sided Lambert
@@ -24,8 +25,10 @@ Scene box_scene(const std::vector<std::pair<Vec3, float>>& dynamic) {
         add_object(desc, Sphere{center, radius}, white);
         desc.objects.back().marked_dynamic = true;
     }
-    return Scene(std::move(desc));
+    return desc;
 }
+
+Scene box_scene(const std::vector<std::pair<Vec3, float>>& dynamic) { return Scene(box_desc(dynamic)); }
 
 struct Maps {
     TracedPhotons complete;
@@ -94,6 +97,38 @@ TEST(DynamicPhotons, NegativePhotonsPassThroughDynamicObjects) {
 TEST(DynamicPhotons, SecondDynamicHitSpawnsNoNegativePhoton) {
     const Maps maps = trace_both(box_scene({{{-0.6f, 1, 0}, 0.5f}, {{0.6f, 1, 0}, 0.5f}}));
     expect_energy_balance(maps);
+}
+
+/// The maps composed from `scene`'s static paths at frame 0 against the maps traced whole.
+void expect_composed_maps_equal_traced(const Scene& scene) {
+    const PreparedFrame frame(scene, 0);
+    const ComposedPhotons composed = compose_photons(frame.context(), trace_static_photon_paths(frame.context(), settings));
+    const TracedPhotons traced = trace_photons(frame.context(), settings);
+    EXPECT_TRUE(same_photons(composed.maps.global, traced.global));
+    EXPECT_TRUE(same_photons(composed.maps.dynamic, traced.dynamic));
+    EXPECT_EQ(composed.maps.dynamic.size(), traced.dynamic.size());
+    EXPECT_GT(composed.retraced_paths, 0);
+}
+
+// The balance, the other way round: the static paths, with the paths that meet a dynamic object
+// retraced from there (negative photons taken from the static path itself), give the complete
+// and dynamic maps photon for photon (photon_paths.h).
+TEST(DynamicPhotons, StaticPathsRetracedWhereTheyMeetDynamicObjectsGiveTheSameMaps) {
+    for (const auto& spheres : std::vector<std::vector<std::pair<Vec3, float>>>{
+             {{{0, 2.5f, 0}, 0.6f}}, {{{0, 3, 0}, 0.5f}, {{0, 1.2f, 0}, 0.6f}}, {{{-0.6f, 1, 0}, 0.5f}, {{0.6f, 1, 0}, 0.5f}}})
+        expect_composed_maps_equal_traced(box_scene(spheres));
+}
+
+// The same with a dynamic ball inside absorbing glass (a stone in tinted water): a path resumes
+// from a ray inside the glass that the ball now cuts short, and loses to absorption only what
+// the shorter ray crosses, as in full tracing, since a kept ray holds the power it starts with.
+TEST(DynamicPhotons, StaticPathsRetracedInsideAbsorbingGlassGiveTheSameMaps) {
+    SceneDesc desc = box_desc({{{0.2f, 1.6f, 0}, 0.4f}});
+    MaterialDesc glass{.type = MaterialType::dielectric, .ior = 1, .roughness = 0};
+    glass.attenuation_color = {0.8f, 0.5f, 0.2f};
+    glass.attenuation_distance = 0.5f;
+    add_object(desc, Sphere{{0, 1.6f, 0}, 1.2f}, add_material(desc, glass));
+    expect_composed_maps_equal_traced(Scene(std::move(desc)));
 }
 
 TEST(DynamicPhotons, StaticPassSeesNoDynamicObject) {

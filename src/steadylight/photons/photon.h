@@ -2,7 +2,9 @@
 // came from, and the power it carries.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "steadylight/base/color.h"
 #include "steadylight/base/vec.h"
@@ -16,5 +18,10 @@ struct Photon {
     Rgb power;     // W per channel; negative for the negative photons of the dynamic map
     uint16_t bounce = 0;  // surface interactions before this one: 0 = a direct hit from the light
 };
+
+/// The same photon bit for bit (negative zeros and NaNs included; padding aside).
+inline bool same_bits(const Photon& a, const Photon& b) {
+    return std::memcmp(&a, &b, offsetof(Photon, bounce)) == 0 && a.bounce == b.bounce;
+}
 
 }  // namespace steadylight

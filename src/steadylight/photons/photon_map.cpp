@@ -1,7 +1,9 @@
 #include "steadylight/photons/photon_map.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/settings_check.h"
 
@@ -12,6 +14,13 @@ std::vector<Vec3> positions_of(const std::vector<Photon>& photons) {
     std::vector<Vec3> positions;
     positions.reserve(photons.size());
     for (const Photon& photon : photons) positions.push_back(photon.p);
+    return positions;
+}
+
+std::vector<Vec3> positions_of(const std::vector<Photon>& photons, const std::vector<uint32_t>& ids) {
+    std::vector<Vec3> positions;
+    positions.reserve(ids.size());
+    for (const uint32_t id : ids) positions.push_back(photons[id].p);
     return positions;
 }
 
@@ -28,10 +37,27 @@ float estimate_radius2(const std::vector<Neighbour>& neighbours, const DensitySe
 }  // namespace
 
 PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted)
-    : m_photons(std::move(photons)), m_emitted(emitted), m_index(positions_of(m_photons)) {}
+    : m_photons(std::move(photons)), m_emitted(emitted),
+      m_index(std::make_shared<const PointIndex>(positions_of(m_photons))) {}
+
+PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap& base, std::vector<uint32_t> base_ids,
+                     std::vector<uint32_t> added_ids)
+    : m_photons(std::move(photons)), m_emitted(emitted), m_index(base.m_index) {
+    SL_CHECK(!base.m_overlay && base_ids.size() == base.size());
+    if (!m_index) m_index = std::make_shared<const PointIndex>();  // base is an empty map
+    PointIndex added(positions_of(m_photons, added_ids));
+    std::vector<uint32_t> added_tree_ids = added.in_tree_order(added_ids);
+    m_overlay = std::make_shared<const Overlay>(
+        Overlay{m_index->in_tree_order(base_ids), std::move(added_tree_ids), std::move(added)});
+}
+
+size_t PhotonMap::indexed_here() const { return m_overlay ? m_overlay->added.size() : m_photons.size(); }
 
 void PhotonMap::k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out) const {
-    m_index.k_nearest(p, k, max_radius * max_radius, out);
+    if (!m_index) return out.clear();
+    if (!m_overlay) return m_index->k_nearest(p, k, max_radius * max_radius, out);
+    PointIndex::k_nearest({m_index.get(), m_overlay->base_ids.data()}, {&m_overlay->added, m_overlay->added_ids.data()},
+                          p, k, max_radius * max_radius, out);
 }
 
 Rgb PhotonMap::estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius) const {
@@ -111,6 +137,11 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
         if (int(neighbours.size()) < k) break;  // nothing further within reach
     }
     return std::nullopt;
+}
+
+bool same_photons(const PhotonMap& a, const PhotonMap& b) {
+    return a.size() == b.size() && std::equal(a.photons().begin(), a.photons().end(), b.photons().begin(),
+                                              [](const Photon& x, const Photon& y) { return same_bits(x, y); });
 }
 
 void validate(const DensitySettings& settings, const std::string& where) {

@@ -33,6 +33,13 @@ public:
     PhotonMap() = default;
     /// `emitted` is the number of photon paths the photons came from (for statistics).
     PhotonMap(std::vector<Photon> photons, long emitted);
+    /// A map of `base`'s photons with some of them removed and others added, without indexing
+    /// them all again: base photon i is `photons[base_ids[i]]` (or gone: PointIndex::removed), the
+    /// added ones are `photons[added_ids[j]]`, and the ids keep base's order. Look-ups search
+    /// base's index and a small one of the added photons and answer exactly as a map built over
+    /// `photons` would. `base` must be a map of its own (not composed like this).
+    PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap& base, std::vector<uint32_t> base_ids,
+              std::vector<uint32_t> added_ids);
 
     const std::vector<Photon>& photons() const { return m_photons; }
     size_t size() const { return m_photons.size(); }
@@ -54,11 +61,26 @@ public:
     /// `radius`, when given, receives the estimate's radius.
     Rgb estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius = nullptr) const;
 
+    /// Photons indexed on their own (not composed over another map's index).
+    size_t indexed_here() const;
+
 private:
+    /// What a composed map adds to its base's index: the ids of base's points and of the added
+    /// ones, both in their tree's order (PointIndex::Mapped), and the added points' tree.
+    struct Overlay {
+        std::vector<uint32_t> base_ids;
+        std::vector<uint32_t> added_ids;
+        PointIndex added;
+    };
+
     std::vector<Photon> m_photons;
     long m_emitted = 0;
-    PointIndex m_index;
+    std::shared_ptr<const PointIndex> m_index;  // shared with the maps composed over this one
+    std::shared_ptr<const Overlay> m_overlay;   // null unless composed
 };
+
+/// The same photons in the same order, bit for bit (photon.h same_bits); the index aside.
+bool same_photons(const PhotonMap& a, const PhotonMap& b);
 
 /// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999): the
 /// estimate at the photon, which counts itself like any other photon (right for photons of

@@ -73,6 +73,40 @@ TEST(PhotonMap, KNearestBreaksTiesByIndexLikeBruteForce) {
     }
 }
 
+// A map composed over another's index (some photons removed, others added in between, the rest
+// renumbered) answers exactly as a map built over all its photons, ties included: new photons
+// sit exactly on kept and on removed ones.
+TEST(PhotonMap, ComposedMapAnswersAsAMapBuiltOverAllItsPhotons) {
+    std::vector<Vec3> points = random_points(3000, 5);
+    for (int i = 0; i < 3000; i += 3) points[size_t(i)] = points[size_t(i / 2)];  // duplicates
+    std::vector<Photon> base_photons;
+    for (const Vec3& p : points) base_photons.push_back({p, {0, 0, 1}, {0, 0, 1}, {1, 1, 1}});
+    const PhotonMap base(base_photons, 3000);
+    std::vector<Photon> photons;
+    std::vector<uint32_t> base_ids(points.size(), PointIndex::removed), added_ids;
+    const std::vector<Vec3> extra = random_points(1000, 6);
+    for (uint32_t i = 0; i < points.size(); ++i) {
+        if (i % 5 != 0) base_ids[i] = uint32_t(photons.size()), photons.push_back(base_photons[i]);
+        if (i % 7 == 0) {
+            const Vec3 p = i % 2 ? points[(i * 13) % points.size()] : extra[i / 7];
+            added_ids.push_back(uint32_t(photons.size()));
+            photons.push_back({p, {0, 0, 1}, {0, 0, 1}, {2, 2, 2}});
+        }
+    }
+    const PhotonMap composed(photons, 3000, base, base_ids, added_ids);
+    const PhotonMap rebuilt(photons, 3000);
+    EXPECT_EQ(composed.indexed_here(), added_ids.size());
+    std::vector<Neighbour> a, b;
+    for (const int k : {1, 7, 300, 5000})
+        for (const Vec3& q : random_points(40, 7)) {
+            composed.k_nearest(q, k, 0.3f, a);
+            rebuilt.k_nearest(q, k, 0.3f, b);
+            ASSERT_EQ(a.size(), b.size()) << "k " << k;
+            for (size_t i = 0; i < a.size(); ++i)
+                ASSERT_TRUE(a[i].index == b[i].index && a[i].distance2 == b[i].distance2) << "k " << k << ", " << i;
+        }
+}
+
 // Photons of total power P spread uniformly over a unit square: irradiance P / 1 m^2, by both
 // the plain and the cone-filtered estimate, and only from the side the photons arrived on.
 TEST(PhotonMap, UniformPhotonsGiveTheirPowerPerArea) {

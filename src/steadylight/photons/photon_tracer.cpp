@@ -2,84 +2,30 @@
 
 #include <vector>
 
-#include "steadylight/base/halton.h"
 #include "steadylight/base/parallel.h"
-#include "steadylight/base/rng.h"
 #include "steadylight/base/settings_check.h"
-#include "steadylight/photons/caustic_targets.h"
+#include "steadylight/photons/photon_walk.h"
 #include "steadylight/shading/surface_point.h"
 
 namespace steadylight {
-namespace {
 
-enum class MapKind { global, caustic };
+void PhotonTracer::trace(uint64_t index, float scale, PhotonOutput out) const {
+    PhotonSampler sampler(index);
+    const float u_select = sampler.next();
+    const Vec2 u_position = sampler.next_vec2();
+    const Vec2 u_direction = sampler.next_vec2();
+    const std::optional<EmissionSample> e = emit(u_select, u_position, u_direction);
+    if (!e || is_black(e->power)) return;
+    // Photons from area lights leave the surface; point lights have no surface to leave.
+    const Ray ray = length2(e->n) > 0 ? spawn_ray(e->p, e->n, e->d) : Ray{e->p, e->d};
+    follow({ray, e->power * scale, sampler}, out);
+}
 
-/// The random numbers of one photon path: Halton dimensions while they last, then a stream
-/// hashed from the photon index (deep bounces matter little and are rare). Copyable, so that a
-/// negative photon can go on with exactly the numbers the static photon would have used.
-class PhotonSampler {
-public:
-    explicit PhotonSampler(uint64_t index) : m_index(index), m_rng(hash_ids(index, 0x9407)) {}
-    float next() { return m_dimension < halton_dimensions ? halton(m_dimension++, m_index) : m_rng.next_float(); }
-    Vec2 next_vec2() {
-        const float x = next();
-        return {x, next()};
-    }
-
-private:
-    uint64_t m_index;
-    int m_dimension = 0;
-    Pcg32 m_rng;
-};
-
-/// Where the photons of one path go.
-struct PhotonOutput {
-    std::vector<Photon>& main;     // the global or the caustic map
-    std::vector<Photon>* dynamic;  // the dynamic map, or nullptr when it is not wanted
-};
-
-/// One photon path in flight: its ray, power and history.
-struct PhotonPath {
-    Ray ray;
-    Rgb power;
-    PhotonSampler sampler;
-    int bounce = 0;
-    bool specular_path = false;  // every bounce so far was specular or glossy
-    bool dynamic = false;        // it has hit a dynamic object
-    bool negative = false;       // it re-traces a static path with negated power
-};
-
-class PhotonTracer {
-public:
-    /// `targets`: where caustic photons are aimed (nullptr: emitted as the lights emit).
-    PhotonTracer(const FrameContext& context, const PhotonSettings& settings, MapKind kind, Visibility visibility,
-                 const CausticTargets* targets)
-        : m_context(context), m_settings(settings), m_kind(kind), m_visibility(visibility), m_targets(targets) {}
-
-    /// Emits photon `index` from the lights and follows it and any negative photon it spawns.
-    void trace(uint64_t index, float scale, PhotonOutput out) const {
-        PhotonSampler sampler(index);
-        const float u_select = sampler.next();
-        const Vec2 u_position = sampler.next_vec2();
-        const Vec2 u_direction = sampler.next_vec2();
-        const std::optional<EmissionSample> e = emit(u_select, u_position, u_direction);
-        if (!e || is_black(e->power)) return;
-        // Photons from area lights leave the surface; point lights have no surface to leave.
-        const Ray ray = length2(e->n) > 0 ? spawn_ray(e->p, e->n, e->d) : Ray{e->p, e->d};
-        follow({ray, e->power * scale, sampler}, out);
-    }
-
-private:
-    std::optional<EmissionSample> emit(float u_select, Vec2 u_position, Vec2 u_direction) const;
-    void follow(PhotonPath path, PhotonOutput out) const;
-    void store(const PhotonPath& path, const Photon& photon, PhotonOutput out) const;
-
-    const FrameContext& m_context;
-    const PhotonSettings& m_settings;
-    MapKind m_kind;
-    Visibility m_visibility;
-    const CausticTargets* m_targets;
-};
+void PhotonTracer::resume(uint64_t index, const PathSegment& segment, int bounce, PhotonOutput out) const {
+    follow({Ray{segment.o, segment.d}, segment.power, PhotonSampler::at_bounce(index, bounce), bounce,
+            segment.specular_path},
+           out);
+}
 
 /// A photon's start: aimed at the caustic targets where that pays, else as its light emits.
 std::optional<EmissionSample> PhotonTracer::emit(float u_select, Vec2 u_position, Vec2 u_direction) const {
@@ -108,16 +54,22 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
         // Negative photons live in the static scene: they pass through every dynamic object.
         const Visibility visibility = path.negative ? Visibility::static_only : m_visibility;
         const std::optional<Hit> hit = m_context.tracer.intersect(path.ray, visibility);
+        // Kept with the power it starts with: the glass absorption along it depends on where it
+        // ends, which a dynamic object can change, so a resumed path applies it itself.
+        if (out.segments)
+            out.segments->push_back({path.ray.o, path.ray.d, hit ? hit->t : infinity, path.power, path.specular_path});
         if (!hit) return;
         const SurfacePoint sp = make_surface_point(m_context.scene, m_context.frame, path.ray, *hit);
 
         // The first dynamic hit: from here the path differs from the static one, which a
         // negative photon follows on with the same ray and the same random numbers.
         if (out.dynamic && !path.dynamic && m_context.scene.object(sp.object).is_dynamic()) {
-            PhotonPath negative = path;
-            negative.dynamic = negative.negative = true;
-            negative.power = path.power * -1.0f;
-            follow(negative, out);
+            if (out.negatives) {
+                PhotonPath negative = path;
+                negative.dynamic = negative.negative = true;
+                negative.power = path.power * -1.0f;
+                follow(negative, out);
+            }
             path.dynamic = true;
         }
 
@@ -138,7 +90,8 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
         }
 
         // Scatter, or be absorbed (by the surface or the glass behind it): survive with the
-        // probability of the scattered power.
+        // probability of the scattered power. Always these four numbers, whatever happens next:
+        // resumed paths rely on it (photon_walk.h).
         const Frame frame = Frame::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
         const std::optional<BsdfSample> bs = bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
@@ -155,6 +108,8 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
     }
 }
 
+namespace {
+
 /// The photons of `count` paths of one kind, and of the dynamic map when `dynamic` is set.
 std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long count, MapKind kind,
                                           const PhotonSettings& settings, Visibility visibility, bool dynamic) {
@@ -163,8 +118,7 @@ std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long coun
     constexpr long chunk = 4096;
     const size_t chunks = size_t((count + chunk - 1) / chunk);
     std::vector<std::vector<Photon>> main(chunks), dynamic_photons(chunks);
-    // The caustic map uses other points of the sequence than the global one.
-    const uint64_t first = kind == MapKind::global ? 0 : uint64_t(1) << 32;
+    const uint64_t first = first_photon_index(kind);
     const float scale = 1.0f / float(count);
     const std::optional<CausticTargets> targets =
         kind == MapKind::caustic ? std::optional<CausticTargets>(std::in_place, context, visibility) : std::nullopt;
@@ -174,15 +128,11 @@ std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long coun
         const PhotonOutput out{main[c], dynamic ? &dynamic_photons[c] : nullptr};
         for (long i = begin; i < end; ++i) tracer.trace(first + uint64_t(i), scale, out);
     });
-    const auto join = [](const std::vector<std::vector<Photon>>& parts) {
-        std::vector<Photon> all;
-        for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
-        return all;
-    };
     return {PhotonMap(join(main), count), PhotonMap(join(dynamic_photons), dynamic ? count : 0)};
 }
 
-/// Caustic paths need a specular or glossy surface; without one the caustic map stays empty.
+}  // namespace
+
 bool has_non_diffuse_surface(const FrameContext& context) {
     for (int object = 0; object < int(context.scene.objects().size()); ++object) {
         const Bsdf& bsdf = context.bsdf_of(object);
@@ -193,8 +143,6 @@ bool has_non_diffuse_surface(const FrameContext& context) {
     }
     return false;
 }
-
-}  // namespace
 
 TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& settings, Visibility visibility) {
     const bool dynamic = visibility == Visibility::everything && !context.scene.dynamic_objects().empty();

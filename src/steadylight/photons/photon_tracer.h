@@ -9,6 +9,8 @@
 // DESIGN.md §2.1): from a path's first dynamic hit on, its diffuse hits are stored there (except
 // direct hits), and a negative photon re-traces the static path the photon would have taken
 // without the dynamic objects, with the same random numbers, carrying negated power.
+// photon_walk.h holds the walk itself; photon_paths.h composes a frame's maps from the static
+// paths instead, with the same result.
 #pragma once
 
 #include <string>

@@ -94,6 +94,19 @@ private:
     bool m_found = false;
 };
 
+/// The ids of an index searched on its own: its points' own.
+struct OwnIds {
+    static bool keeps(uint32_t) { return true; }
+    uint32_t operator()(uint32_t, uint32_t id) const { return id; }
+};
+
+/// The ids of a PointIndex::Mapped, by the point's place in the tree.
+struct MappedIds {
+    const uint32_t* ids;
+    static bool keeps(uint32_t id) { return id != PointIndex::removed; }
+    uint32_t operator()(uint32_t position, uint32_t) const { return ids[position]; }
+};
+
 int widest_axis(Vec3 lower, Vec3 upper) {
     const Vec3 extent = upper - lower;
     return extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
@@ -136,11 +149,14 @@ void PointIndex::build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper) {
     }
 }
 
-template <class Heap>
-void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap) const {
-    const auto offer = [&](const Entry& e) {
+template <class Heap, class Ids>
+void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap, Ids ids) const {
+    const auto offer = [&](uint32_t position) {
+        const Entry& e = m_entries[position];
+        const uint32_t id = ids(position, e.id);
+        if (!Ids::keeps(id)) return;
         const float dx = e.p[0] - p[0], dy = e.p[1] - p[1], dz = e.p[2] - p[2];
-        heap.offer(e.id, dx * dx + dy * dy + dz * dz);
+        heap.offer(id, dx * dx + dy * dy + dz * dz);
     };
     // Descend towards p; visit the far half of a split afterwards if the heap's radius still
     // reaches the far half's cell. The distance to a cell is kept per axis and updated as the
@@ -151,10 +167,10 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
         const int axis = m_axis[mid];
         const float d = p[axis] - m_split[mid];
         if (d < 0) {
-            search(begin, mid, p, cell, heap);
+            search(begin, mid, p, cell, heap, ids);
             begin = mid;
         } else {
-            search(mid, end, p, cell, heap);
+            search(mid, end, p, cell, heap, ids);
             end = mid;
         }
         const float offset = cell.offset[axis];
@@ -162,24 +178,45 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
         cell.offset[axis] = d;
         if (cell.distance2 > heap.radius2()) return;
     }
-    for (uint32_t i = begin; i < end; ++i) offer(m_entries[i]);
+    for (uint32_t i = begin; i < end; ++i) offer(i);
 }
 
-void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {
+std::vector<uint32_t> PointIndex::in_tree_order(const std::vector<uint32_t>& by_id) const {
+    SL_CHECK(by_id.size() == m_entries.size());
+    std::vector<uint32_t> ids(m_entries.size());
+    for (size_t i = 0; i < m_entries.size(); ++i) ids[i] = by_id[m_entries[i].id];
+    return ids;
+}
+
+template <class... Parts>
+void PointIndex::search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts) {
     out.clear();
-    if (m_entries.empty() || k <= 0) return;
+    if (k <= 0) return;
     const float query[3] = {p.x, p.y, p.z};
+    const auto search_part = [&](auto& heap, const auto& part) {
+        const auto& [index, ids] = part;
+        if (!index->m_entries.empty())
+            index->search(0, uint32_t(index->m_entries.size()), query, CellDistance{}, heap, ids);
+    };
     if (k == 1) {
         NearestOne nearest(max_distance2);
-        search(0, uint32_t(m_entries.size()), query, CellDistance{}, nearest);
+        (search_part(nearest, parts), ...);
         if (nearest.size()) out.push_back(nearest.best());
         return;
     }
     out.resize(size_t(k));
     BoundedHeap heap(out.data(), k, max_distance2);
-    search(0, uint32_t(m_entries.size()), query, CellDistance{}, heap);
+    (search_part(heap, parts), ...);
     heap.sort();
     out.resize(size_t(heap.size()));
+}
+
+void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {
+    search_all(p, k, max_distance2, out, std::pair{this, OwnIds{}});
+}
+
+void PointIndex::k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) {
+    search_all(p, k, max_distance2, out, std::pair{a.index, MappedIds{a.ids}}, std::pair{b.index, MappedIds{b.ids}});
 }
 
 }  // namespace steadylight

@@ -24,14 +24,32 @@ struct Neighbour {
 
 class PointIndex {
 public:
+    /// An id that a MappedIndex gives the points it leaves out.
+    static constexpr uint32_t removed = ~0u;
+
+    /// An index whose points answer with other ids, or not at all (`removed`): an index built
+    /// once and searched as part of a set that has since lost some points and been renumbered.
+    /// `ids` are in the tree's order (in_tree_order()), so a search reads them where it reads
+    /// the points.
+    struct Mapped {
+        const PointIndex* index;
+        const uint32_t* ids;
+    };
+
     PointIndex() = default;
     explicit PointIndex(const std::vector<Vec3>& points);
 
     size_t size() const { return m_entries.size(); }
+    /// `by_id[i]` for each point i, in the order the tree keeps the points (Mapped's ids).
+    std::vector<uint32_t> in_tree_order(const std::vector<uint32_t>& by_id) const;
 
     /// The up to `k` nearest points within sqrt(max_distance2) of `p`, nearest first (ties:
     /// smaller index first).
     void k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const;
+
+    /// k_nearest over the union of two mapped indexes (their ids distinct): the same answer as
+    /// one index built over the union with those ids, since both order by distance, then id.
+    static void k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out);
 
 private:
     /// A point and its index in the input, 16 bytes.
@@ -47,8 +65,11 @@ private:
     };
 
     void build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper);
-    template <class Heap>
-    void search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap) const;
+    template <class Heap, class Ids>
+    void search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap, Ids ids) const;
+    /// Searches each of `parts` (index and ids) into one heap, then moves its result to `out`.
+    template <class... Parts>
+    static void search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
 
     std::vector<Entry> m_entries;    // in tree order
     // A range [begin, end) longer than a leaf splits at mid = (begin + end) / 2 into [begin, mid)

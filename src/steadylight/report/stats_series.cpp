@@ -60,6 +60,7 @@ const std::vector<StatsField>& count_fields() {
         {"global photons stored", [](const FrameStats& s) { return double(s.global_photons_stored); }},
         {"caustic photons stored", [](const FrameStats& s) { return double(s.caustic_photons_stored); }},
         {"dynamic photons stored", [](const FrameStats& s) { return double(s.dynamic_photons_stored); }},
+        {"photon paths traced", [](const FrameStats& s) { return double(s.retraced_photon_paths); }},
         {"camera samples (path)", [](const FrameStats& s) { return double(s.camera_samples); }},
         {"rays traced (path)", [](const FrameStats& s) { return double(s.path_rays); }},
         {"path length (vertices a sample)",

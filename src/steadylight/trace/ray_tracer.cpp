@@ -247,6 +247,25 @@ std::optional<Hit> RayTracer::intersect(const Ray& ray, Visibility visibility) c
     return hit;
 }
 
+bool RayTracer::meets_dynamic(const Ray& ray, float static_t) const {
+    // Static objects placed as instances share the instance scene: then only the whole query
+    // says which is nearer.
+    if (m_has_static_instances) {
+        const std::optional<Hit> hit = intersect(ray);
+        return hit && m_scene.object(hit->object).is_dynamic();
+    }
+    if (!may_hit_instances(ray, static_t, Visibility::everything)) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rayhit;
+    rayhit.ray = make_embree_ray(ray, Visibility::everything);
+    rayhit.ray.tfar = static_t;
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_instance_scene, &context, &rayhit);
+    return rayhit.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
+}
+
 bool RayTracer::occluded(const Ray& ray, Visibility visibility) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

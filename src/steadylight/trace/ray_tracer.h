@@ -43,6 +43,11 @@ public:
 
     std::optional<Hit> intersect(const Ray& ray, Visibility visibility = Visibility::everything) const;
     bool occluded(const Ray& ray, Visibility visibility = Visibility::everything) const;
+    /// Whether intersect(ray) meets a dynamic object, for a ray whose nearest hit among the static
+    /// objects (intersect(ray, Visibility::static_only)) is at `static_t` (infinity: none).
+    /// Exactly intersect()'s own decision, without its query of the static scene: the instance
+    /// query it makes next, cut at the same distance.
+    bool meets_dynamic(const Ray& ray, float static_t) const;
 
     /// The Embree scenes, for the benchmark that compares this interface with raw Embree calls.
     RTCScene static_embree_scene() const { return m_static_scene; }

@@ -1,0 +1,213 @@
+// Static photon paths kept and composed into each frame's maps (photon_paths.h).
+#include "steadylight/photons/photon_paths.h"
+
+#include "steadylight/base/check.h"
+#include "steadylight/base/parallel.h"
+#include "steadylight/photons/photon_walk.h"
+
+namespace steadylight {
+namespace {
+
+// Paths per chunk of the parallel loops; chunks join in order, so results do not depend on threads.
+constexpr long chunk = 4096;
+
+size_t chunks_of(long count) { return size_t((count + chunk - 1) / chunk); }
+
+/// Whether photons of `kind` are traced at all in `context` (as trace_photons decides).
+long path_count(const FrameContext& context, const PhotonSettings& settings, MapKind kind) {
+    if (context.lights.empty()) return 0;
+    if (kind == MapKind::global) return settings.global_photons;
+    return has_non_diffuse_surface(context) ? settings.caustic_photons : 0;
+}
+
+/// Turns per-path counts into offsets: first[i] = sum of counts before i, with one more at the end.
+std::vector<uint32_t> offsets_of(const std::vector<uint32_t>& counts) {
+    std::vector<uint32_t> first(counts.size() + 1, 0);
+    for (size_t i = 0; i < counts.size(); ++i) first[i + 1] = first[i] + counts[i];
+    return first;
+}
+
+StoredPaths trace_stored(const FrameContext& context, const PhotonSettings& settings, MapKind kind) {
+    StoredPaths paths;
+    paths.count = path_count(context, settings, kind);
+    if (kind == MapKind::caustic) paths.targets.emplace(context, Visibility::static_only);
+    if (paths.count <= 0) {
+        paths.first_segment = paths.first_photon = {0};
+        return paths;
+    }
+    const size_t chunks = chunks_of(paths.count);
+    std::vector<std::vector<Photon>> photons(chunks);
+    std::vector<std::vector<PathSegment>> segments(chunks);
+    std::vector<uint32_t> segment_counts(size_t(paths.count)), photon_counts(size_t(paths.count));
+    const PhotonTracer tracer(context, settings, kind, Visibility::static_only, paths.targets ? &*paths.targets : nullptr);
+    const float scale = 1.0f / float(paths.count);
+    parallel_for_chunks(paths.count, chunk, [&](long begin, long end) {
+        const size_t c = size_t(begin / chunk);
+        const PhotonOutput out{photons[c], nullptr, true, &segments[c]};
+        for (long i = begin; i < end; ++i) {
+            const size_t photons_before = photons[c].size(), segments_before = segments[c].size();
+            tracer.trace(first_photon_index(kind) + uint64_t(i), scale, out);
+            photon_counts[size_t(i)] = uint32_t(photons[c].size() - photons_before);
+            segment_counts[size_t(i)] = uint32_t(segments[c].size() - segments_before);
+        }
+    });
+    paths.first_segment = offsets_of(segment_counts);
+    paths.first_photon = offsets_of(photon_counts);
+    paths.segments = join(segments);
+    paths.photons = PhotonMap(join(photons), paths.count);
+    return paths;
+}
+
+/// A path that meets a dynamic object in this frame: from which of its rays on, and what it
+/// does from there (in its chunk's vectors).
+struct ChangedPath {
+    uint32_t path;
+    int bounce;                                      // its first ray that meets a dynamic object
+    size_t main_begin, main_end, dynamic_begin, dynamic_end;  // its new photons
+};
+
+/// The changed paths of one chunk and their new photons.
+struct ChunkChanges {
+    std::vector<ChangedPath> paths;
+    std::vector<Photon> main, dynamic;
+};
+
+/// The first ray of path `i` that meets a dynamic object at this frame, if any.
+std::optional<int> first_dynamic_ray(const RayTracer& tracer, const StoredPaths& paths, size_t i) {
+    for (uint32_t s = paths.first_segment[i]; s < paths.first_segment[i + 1]; ++s) {
+        const PathSegment& segment = paths.segments[s];
+        if (tracer.meets_dynamic(Ray{segment.o, segment.d}, segment.t_static)) return int(s - paths.first_segment[i]);
+    }
+    return std::nullopt;
+}
+
+/// Finds the paths that meet a dynamic object and retraces them from there.
+std::vector<ChunkChanges> retrace_changed(const FrameContext& context, const PhotonSettings& settings,
+                                          const StoredPaths& paths, MapKind kind, bool dynamic_map) {
+    std::vector<ChunkChanges> changes(chunks_of(paths.count));
+    const PhotonTracer tracer(context, settings, kind, Visibility::everything, paths.targets ? &*paths.targets : nullptr);
+    parallel_for_chunks(paths.count, chunk, [&](long begin, long end) {
+        ChunkChanges& mine = changes[size_t(begin / chunk)];
+        // The negative photons are the static path's own later photons: taken from there.
+        const PhotonOutput out{mine.main, dynamic_map ? &mine.dynamic : nullptr, false};
+        for (long i = begin; i < end; ++i) {
+            const std::optional<int> bounce = first_dynamic_ray(context.tracer, paths, size_t(i));
+            if (!bounce) continue;
+            ChangedPath changed{uint32_t(i), *bounce, mine.main.size(), 0, mine.dynamic.size(), 0};
+            tracer.resume(first_photon_index(kind) + uint64_t(i), paths.segments[paths.first_segment[size_t(i)] + uint32_t(*bounce)],
+                          *bounce, out);
+            changed.main_end = mine.main.size();
+            changed.dynamic_end = mine.dynamic.size();
+            mine.paths.push_back(changed);
+        }
+    });
+    return changes;
+}
+
+/// Where a map's photons come from, as it is composed.
+struct Composition {
+    std::vector<Photon> photons;
+    std::vector<uint32_t> base_ids, added_ids;
+};
+
+/// The static photons of a changed path that stay: those stored before its first dynamic ray.
+uint32_t kept_end(const StoredPaths& paths, const ChangedPath& changed) {
+    const std::vector<Photon>& photons = paths.photons.photons();
+    uint32_t end = paths.first_photon[changed.path];
+    while (end < paths.first_photon[changed.path + 1] && photons[end].bounce < changed.bounce) ++end;
+    return end;
+}
+
+/// The main map in full tracing's order: each path's static photons, a changed path's only up
+/// to its first dynamic ray and then its new ones.
+Composition compose_main(const StoredPaths& paths, const std::vector<ChunkChanges>& changes) {
+    const std::vector<Photon>& base = paths.photons.photons();
+    Composition c;
+    c.base_ids.assign(base.size(), PointIndex::removed);
+    c.photons.reserve(base.size());
+    uint32_t cursor = 0;
+    const auto keep = [&](uint32_t end) {
+        for (; cursor < end; ++cursor) {
+            c.base_ids[cursor] = uint32_t(c.photons.size());
+            c.photons.push_back(base[cursor]);
+        }
+    };
+    for (const ChunkChanges& chunk_changes : changes)
+        for (const ChangedPath& changed : chunk_changes.paths) {
+            keep(kept_end(paths, changed));
+            for (size_t i = changed.main_begin; i < changed.main_end; ++i) {
+                c.added_ids.push_back(uint32_t(c.photons.size()));
+                c.photons.push_back(chunk_changes.main[i]);
+            }
+            cursor = paths.first_photon[changed.path + 1];
+        }
+    keep(uint32_t(base.size()));
+    return c;
+}
+
+/// The dynamic map in full tracing's order: per changed path, its negative photons (the static
+/// path's photons from the first dynamic ray on, direct hits left out, power negated), then
+/// its new indirect ones.
+std::vector<Photon> compose_dynamic(const StoredPaths& paths, const std::vector<ChunkChanges>& changes) {
+    const std::vector<Photon>& base = paths.photons.photons();
+    std::vector<Photon> dynamic;
+    for (const ChunkChanges& chunk_changes : changes)
+        for (const ChangedPath& changed : chunk_changes.paths) {
+            for (uint32_t i = kept_end(paths, changed); i < paths.first_photon[changed.path + 1]; ++i)
+                if (base[i].bounce > 0) {
+                    Photon negative = base[i];
+                    negative.power = base[i].power * -1.0f;
+                    dynamic.push_back(negative);
+                }
+            dynamic.insert(dynamic.end(), chunk_changes.dynamic.begin() + long(changed.dynamic_begin),
+                           chunk_changes.dynamic.begin() + long(changed.dynamic_end));
+        }
+    return dynamic;
+}
+
+long changed_count(const std::vector<ChunkChanges>& changes) {
+    long count = 0;
+    for (const ChunkChanges& chunk_changes : changes) count += long(chunk_changes.paths.size());
+    return count;
+}
+
+}  // namespace
+
+size_t StoredPaths::bytes() const {
+    return (first_segment.size() + first_photon.size()) * sizeof(uint32_t) + segments.size() * sizeof(PathSegment) +
+           photons.size() * sizeof(Photon);
+}
+
+StaticPhotonPaths trace_static_photon_paths(const FrameContext& context, const PhotonSettings& settings) {
+    return {settings, trace_stored(context, settings, MapKind::global), trace_stored(context, settings, MapKind::caustic)};
+}
+
+ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonPaths& paths) {
+    ComposedPhotons out;
+    const StoredPaths& global = paths.global;
+    // As trace_photons: the dynamic map comes from the global paths, where there are dynamic objects.
+    const bool dynamic = !context.scene.dynamic_objects().empty();
+    const std::vector<ChunkChanges> global_changes = retrace_changed(context, paths.settings, global, MapKind::global, dynamic);
+    Composition composed = compose_main(global, global_changes);
+    out.maps.global = PhotonMap(std::move(composed.photons), global.count, global.photons, std::move(composed.base_ids),
+                                std::move(composed.added_ids));
+    out.maps.dynamic = PhotonMap(compose_dynamic(global, global_changes), dynamic ? global.count : 0);
+    out.retraced_paths = changed_count(global_changes);
+
+    const StoredPaths& caustic = paths.caustic;
+    if (caustic.count > 0 && !(CausticTargets(context, Visibility::everything) == *caustic.targets)) {
+        PhotonSettings caustic_only = paths.settings;
+        caustic_only.global_photons = 0;
+        out.maps.caustic = std::move(trace_photons(context, caustic_only).caustic);
+        out.caustic_traced = true;
+        return out;
+    }
+    const std::vector<ChunkChanges> caustic_changes = retrace_changed(context, paths.settings, caustic, MapKind::caustic, false);
+    composed = compose_main(caustic, caustic_changes);
+    out.maps.caustic = PhotonMap(std::move(composed.photons), caustic.count, caustic.photons, std::move(composed.base_ids),
+                                 std::move(composed.added_ids));
+    out.retraced_paths += changed_count(caustic_changes);
+    return out;
+}
+
+}  // namespace steadylight
