@@ -27,9 +27,20 @@ struct Components {
 /// shadow rays of all the pixel's camera rays together cover the lights evenly.
 struct LightStrata {
     uint32_t first = 0;
-    uint32_t count = 0;  // 0: no stratification, independent samples
+    uint32_t count = 1;
     Vec2 shift;
 };
+
+/// The random-number streams of a pixel (docs/localized.md, "Random numbers per term"): one for
+/// the pixel's own constants (the jitter of its camera rays and of its light strata) and one per
+/// camera ray for the lobes its path chooses (specular chains, a coat's bounce). The direct
+/// light takes its numbers from the light strata, none from a stream. So no term, and no camera
+/// ray, depends on what another consumed: a frame can redo one term of one ray alone.
+enum class PixelStream : uint64_t { constants = 0x9e01, path = 0x9e02 };
+
+Pcg32 pixel_stream(const Camera& camera, int x, int y, PixelStream stream, int sample = 0) {
+    return Pcg32(hash_ids(uint64_t(y) * uint64_t(camera.width) + uint64_t(x), uint64_t(stream), uint64_t(sample)));
+}
 
 class Shader {
 public:
@@ -44,11 +55,10 @@ public:
 private:
     Components shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, bool count_emission,
                          const PixelSample& pixel, const LightStrata& strata, Pcg32& rng) const;
-    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
-                     Pcg32& rng) const;
+    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata) const;
     Rgb trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const;
     void shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
-                       const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const;
+                       const PixelSample& pixel, const LightStrata& strata, Components& c) const;
 
     const FrameContext& m_context;
     const ShadingSettings& m_settings;
@@ -59,19 +69,14 @@ private:
 };
 
 Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
-                         const LightStrata& strata, Pcg32& rng) const {
+                         const LightStrata& strata) const {
     Rgb sum;
     for (int s = 0; s < m_settings.direct_samples; ++s) {
         // Stratified: the choice of light takes the stratified dimension and passes its
         // remainder on, so each light's area is stratified too, not only the pixel's samples.
         // Lights are chosen by what they could give this point (no MIS here to agree with).
-        std::optional<LightSample> light;
-        if (strata.count)
-            light = m_context.lights.sample_reusing(sp.p, sp.ns, stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift));
-        else {
-            const float u_select = rng.next_float();
-            light = m_context.lights.sample(sp.p, u_select, rng.next_vec2());
-        }
+        const std::optional<LightSample> light =
+            m_context.lights.sample_reusing(sp.p, sp.ns, stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift));
         if (!light) continue;
         const Vec3 wi = frame.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
@@ -82,10 +87,10 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
 }
 
 void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
-                           const PixelSample& pixel, const LightStrata& strata, Pcg32& rng, Components& c) const {
+                           const PixelSample& pixel, const LightStrata& strata, Components& c) const {
     // Textures multiply here, after the cache's interpolation: they are never blurred by it.
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
-    c.direct += direct_light(sp, frame, bsdf, wo, strata, rng);
+    c.direct += direct_light(sp, frame, bsdf, wo, strata);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
     const Stopwatch caustic_time;
@@ -146,7 +151,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         // over more, hence the factor 2.
         at.reach = 2 * m_context.frame.camera.pixel_footprint(hit.t);
         if (depth > 0) at.memo = at.caustic_memo = nullptr;
-        shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, rng, c);
+        shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, c);
         if (const std::unique_ptr<Bsdf> coat = bsdf.non_diffuse_part()) c.specular = trace_coat(*coat, surface, ray, rng);
         return c;
     }
@@ -156,7 +161,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     // it: rough glass tells inside from outside by them (the reflective BSDFs are two-sided).
     if (!bsdf.is_delta()) {
         const Frame own = Frame::from_normal(surface.nm);
-        c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata, rng);
+        c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata);
     }
     if (depth >= m_settings.max_specular_depth) return c;
     // What the bounce sees keeps this camera ray's light strata: each camera ray still reaches
@@ -217,16 +222,17 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
             for (int x = x0; x < x1; ++x) {
                 // The same numbers for a pixel in every frame: where nothing changes, nothing
                 // flickers (paper §4; bit-identical static regions).
-                Pcg32 rng(hash_ids(uint64_t(y) * uint64_t(camera.width) + uint64_t(x), 0x9e01));
-                const Vec2 shift = rng.next_vec2();
-                const LightStrata strata{0, uint32_t(n * settings.direct_samples), rng.next_vec2()};
+                Pcg32 constants = pixel_stream(camera, x, y, PixelStream::constants);
+                const Vec2 shift = constants.next_vec2();
+                const LightStrata strata{0, uint32_t(n * settings.direct_samples), constants.next_vec2()};
                 Components sum;
                 PixelMemo memo, caustic_memo;
                 for (int s = 0; s < n; ++s) {
                     const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
                     const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
                     const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
-                    const Components c = shader.shade(ray, 0, true, {x, y, s, n, &memo, &caustic_memo}, ray_strata, rng);
+                    Pcg32 path = pixel_stream(camera, x, y, PixelStream::path, s);
+                    const Components c = shader.shade(ray, 0, true, {x, y, s, n, &memo, &caustic_memo}, ray_strata, path);
                     if (!is_finite(c.sum())) continue;
                     sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
                     for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];
