@@ -38,6 +38,7 @@ const std::vector<LayerOf<LocalizedFrame>> localized_layers = {
     {"dynamic", &LocalizedFrame::dynamic, true},
     {"static_records", &LocalizedFrame::static_records, true},
     {"dynamic_records", &LocalizedFrame::dynamic_records, true},
+    {"changed", &LocalizedFrame::changed, true},
 };
 
 const std::vector<LayerOf<PathFrame>> path_layers = {};  // the beauty only

@@ -3,22 +3,30 @@
 
 #include <algorithm>
 
+#include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/passes/frame_photons.h"
 #include "steadylight/passes/influence.h"
 #include "steadylight/passes/photon_gather.h"
+#include "steadylight/passes/pixel_reuse.h"
+#include "steadylight/photons/surface_coverage.h"
 
 namespace steadylight {
 namespace {
 
 /// The static records with the dynamic map's irradiance estimate added at each (paper §3.3, L_t).
-IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic, const DensitySettings& density) {
+/// `changed`, when given, gets a flag per record: whether its irradiance changed.
+IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic, const DensitySettings& density,
+                                std::vector<uint8_t>* changed = nullptr) {
     std::vector<IrradianceRecord> records = static_cache.records();
+    if (changed) changed->assign(records.size(), 0);
     parallel_for_chunks(long(records.size()), 64, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
             IrradianceRecord& r = records[size_t(i)];
             const Rgb delta = dynamic.estimate_irradiance(r.p, r.n, density);
-            r.E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g), std::max(0.0f, r.E.b + delta.b)};
+            const Rgb E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g), std::max(0.0f, r.E.b + delta.b)};
+            if (changed) (*changed)[size_t(i)] = E != r.E;
+            r.E = E;
         }
     });
     IrradianceCache corrected(static_cache.settings());
@@ -26,9 +34,44 @@ IrradianceCache corrected_cache(const IrradianceCache& static_cache, const Photo
     return corrected;
 }
 
+/// Marks the pixels whose indirect light a frame may change against the static frame: on the
+/// screen, the reach of every corrected record that changed (the furthest any interpolation
+/// reads it: IrradianceCache::interpolate at twice its reach), and where the influence blends
+/// in L_y.
+std::vector<uint8_t> indirect_changes(const Camera& camera, const IrradianceCache& static_cache,
+                                      const std::vector<uint8_t>& changed_records, const InfluenceMap& influence,
+                                      const LocalizedSettings& localized) {
+    std::vector<uint8_t> mask(size_t(camera.width) * size_t(camera.height), 0);
+    const float reach_per_radius = 2 * static_cache.settings().accuracy * 1.001f;
+    for (size_t i = 0; i < changed_records.size(); ++i) {
+        if (!changed_records[i]) continue;
+        const IrradianceRecord& r = static_cache.records()[i];
+        mark_sphere_on_screen(camera, {r.p, r.radius * reach_per_radius}, mask);
+    }
+    if (!influence.values.empty())
+        for (int y = 0; y < camera.height; ++y)
+            for (int x = 0; x < camera.width; ++x)
+                if (blend_weight(influence.at(x, y), localized) > 0) mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
+    return mask;
+}
+
 /// The shading pass's slots for the layers of this method's own (shading_pass.h ExtraLayers).
 enum ExtraSlot { influence_slot, dynamic_slot, L_y_slot, L_t_slot, indirect_static_slot, slot_count };
 static_assert(slot_count <= max_extra_layers);
+
+/// The influence layer's largest value, 1000 x tau_upper: L_y alone long before.
+constexpr float max_influence_shown = 1000;
+
+/// The `changed` layer: per pixel the ChangedTerm bits of the terms a frame redid (pixel_reuse.h).
+Image changed_picture(const Camera& camera, const std::vector<uint8_t>& changed) {
+    Image image(camera.width, camera.height);
+    for (int y = 0; y < camera.height; ++y)
+        for (int x = 0; x < camera.width; ++x) {
+            const float bits = float(changed[size_t(y) * size_t(camera.width) + size_t(x)]);
+            image.at(x, y) = {bits, bits, bits};
+        }
+    return image;
+}
 
 /// What a camera ray found at its diffuse point, for the layers.
 struct IndirectParts {
@@ -47,7 +90,6 @@ void fill_layers(const FrameContext& context, const IrradianceCache& static_cach
     // Dynamic objects always take L_y: shown as the largest influence, and in their own mask.
     // The influence is infinite where there is no static indirect light; every layer stays
     // finite (a compositor's blur would spread an inf), and far below the half-float range.
-    constexpr float max_influence_shown = 1000;  // 1000 x tau_upper: L_y alone long before
     extra[influence_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? max_influence_shown : std::min(parts.influence, max_influence_shown));
     extra[dynamic_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? 1.0f : 0.0f);
     extra[L_y_slot] = albedo_over_pi * parts.L_y;
@@ -57,7 +99,78 @@ void fill_layers(const FrameContext& context, const IrradianceCache& static_cach
             extra[indirect_static_slot] = albedo_over_pi * *E * float(pixel.samples);
 }
 
+/// What the localized method's shading reads at diffuse points.
+struct LocalizedLighting {
+    const IrradianceCache& static_cache;   // for the layer of the static cache's indirect light
+    const IrradianceCache& dynamic_cache;  // L_y
+    const IrradianceCache& transported;    // L_t
+    const InfluenceMap& influence;         // no values: L_t everywhere off the dynamic objects
+    const IrradiancePhotons& irradiance;
+    const PhotonMap& caustic;
+    bool frozen = false;
+};
+
+/// The shading pass of the localized method: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on
+/// dynamic objects; the frame's own or the static frame's (reuse.visibility static_only).
+ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting& lighting,
+                            const PhotonMappingSettings& photon, const LocalizedSettings& localized, PixelReuse reuse,
+                            FrameStats& stats) {
+    const float max_radius = photon.irradiance_estimate.max_radius;
+    const auto full_gather = make_point_gather(context, lighting.irradiance, max_radius, photon.gather);
+    const auto rough_gather = make_point_gather(context, lighting.irradiance, max_radius, rough_gather_settings(photon.gather));
+    const auto influence_at = [&](int x, int y) { return lighting.influence.values.empty() ? 0.0f : lighting.influence.at(x, y); };
+    std::atomic<long> fallbacks = 0, gather_rays = 0;
+    const auto transported = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n, const PixelSample& pixel) {
+        std::atomic<long> gathered = 0, rays = 0;
+        const Rgb E = cached_irradiance(cache, sp, n, pixel.minor_branch ? rough_gather : full_gather, gathered, rays);
+        if (gathered && pixel.trace) pixel.trace->flags |= PixelTrace::gather;
+        fallbacks += gathered, gather_rays += rays;
+        return E;
+    };
+    const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra) {
+        const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
+        const float I = on_dynamic ? 0.0f : influence_at(pixel.x, pixel.y);
+        const float weight = on_dynamic ? 1.0f : (lighting.frozen ? 0.0f : blend_weight(I, localized));
+        const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
+            return PixelMemo::Values{weight > 0 ? transported(lighting.dynamic_cache, sp, n, pixel) : Rgb{},
+                                     weight < 1 ? transported(lighting.transported, sp, n, pixel) : Rgb{}, Rgb{}};
+        });
+        if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
+        return L_y * weight + L_t * (1 - weight);
+    };
+    // A reused pixel's influence layer: what its camera rays that reached a diffuse point would
+    // have written (fill_layers), summed in the same order.
+    reuse.reused_layers = [&](int x, int y, const PixelTrace& trace, PixelSums& sums) {
+        Rgb sum;
+        for (int ray = 0; ray < trace.surface_rays; ++ray) sum += Rgb{1, 1, 1} * std::min(influence_at(x, y), max_influence_shown);
+        sums.extra[influence_slot] = sum;
+    };
+    ShadedFrame shaded = shade_frame(context, photon.shading, lighting.caustic, indirect, [&](const Ray& ray) {
+        return gather_from_photons(context, lighting.irradiance, max_radius, reuse.visibility, ray).L;
+    }, reuse);
+    stats.fallback_gathers += fallbacks;
+    stats.gather_rays += gather_rays;
+    return shaded;
+}
+
 }  // namespace
+
+StaticFrame make_static_frame(const FrameContext& context, const StaticSolution& solution,
+                              const PhotonMappingSettings& photon, const LocalizedSettings& localized) {
+    SL_CHECK(solution.photon_paths);
+    const StaticPhotonPaths& paths = *solution.photon_paths;
+    const IrradiancePhotons irradiance(paths.global.photons, photon.irradiance_stride, photon.irradiance_estimate,
+                                       surface_coverage(context, Visibility::static_only));
+    // Built as every frame builds L_t, so that its interpolations are the frame's bit for bit.
+    const IrradianceCache transported = corrected_cache(solution.cache, PhotonMap{}, localized.correction_estimate);
+    const IrradianceCache no_dynamic_cache(photon.cache);
+    const InfluenceMap no_influence;
+    StaticFrame out;
+    FrameStats stats;
+    shade_localized(context, {solution.cache, no_dynamic_cache, transported, no_influence, irradiance, paths.caustic.photons},
+                    photon, localized, {.visibility = Visibility::static_only, .keep = &out}, stats);
+    return out;
+}
 
 LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution& solution,
                               const PhotonMappingSettings& photon, const LocalizedSettings& localized,
@@ -69,6 +182,10 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     stats.frame = context.frame.frame;
     stats.static_records = solution.records();
     const float max_radius = photon.irradiance_estimate.max_radius;
+    const StaticFrame* base = solution.static_frame && !frozen &&
+                                      same_view_and_lights(context.scene, context.frame, solution.static_frame->made_at)
+                                  ? solution.static_frame.get()
+                                  : nullptr;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
     const FramePhotons traced(context, photon, stats, solution.photon_paths.get());
@@ -92,37 +209,35 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
 
     // L_t: the static records corrected by the dynamic map.
     const IrradianceCache& static_cache = solution.cache;
+    std::vector<uint8_t> changed_records;
     const IrradianceCache corrected = timed_phase("L_t", stats.correction_s, [&] {
         return frozen ? IrradianceCache(photon.cache)
-                      : corrected_cache(static_cache, photons.dynamic, localized.correction_estimate);
+                      : corrected_cache(static_cache, photons.dynamic, localized.correction_estimate, &changed_records);
     });
     const IrradianceCache& transported = frozen ? static_cache : corrected;
 
+    // With a static frame, which pixels to shade again (pixel_reuse.h).
+    PixelReuse reuse;
+    PixelPlan plan;
+    if (base) {
+        const FrameChanges changes{context.tracer.dynamic_bounds(), context.lights.bounds(),
+                                   indirect_changes(context.frame.camera, static_cache, changed_records, influence, localized),
+                                   std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
+                                   traced.caustic_changed && photons.caustic.size() > 0};
+        plan = plan_pixels(context.frame.camera, *base, changes);
+        reuse.base = base;
+        reuse.work = &plan.work;
+        stats.pixels_reused = plan.reused, stats.pixels_redone_but_direct = plan.redone_but_direct, stats.pixels_redone = plan.redone;
+        std::copy(std::begin(plan.changed_pixels), std::end(plan.changed_pixels), stats.pixels_changed.begin());
+    }
+
     // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects.
-    const auto full_gather = make_point_gather(context, irradiance, max_radius, photon.gather);
-    const auto rough_gather = make_point_gather(context, irradiance, max_radius, rough_gather_settings(photon.gather));
-    std::atomic<long> fallbacks = 0, gather_rays = 0;
-    const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra) {
-        const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
-        const float I = on_dynamic || influence.values.empty() ? 0.0f : influence.at(pixel.x, pixel.y);
-        const float weight = on_dynamic ? 1.0f : (frozen ? 0.0f : blend_weight(I, localized));
-        const auto& gather = pixel.minor_branch ? rough_gather : full_gather;
-        const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
-            return PixelMemo::Values{
-                weight > 0 ? cached_irradiance(dynamic_cache, sp, n, gather, fallbacks, gather_rays) : Rgb{},
-                weight < 1 ? cached_irradiance(transported, sp, n, gather, fallbacks, gather_rays) : Rgb{}, Rgb{}};
-        });
-        if (extra) fill_layers(context, static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
-        return L_y * weight + L_t * (1 - weight);
-    };
+    stats.gather_rays = built.gather_rays;
     ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
-        return shade_frame(context, photon.shading, photons.caustic, indirect, [&](const Ray& ray) {
-            return gather_from_photons(context, irradiance, max_radius, Visibility::everything, ray).L;
-        });
+        return shade_localized(context, {static_cache, dynamic_cache, transported, influence, irradiance, photons.caustic, frozen},
+                               photon, localized, reuse, stats);
     });
     stats.caustics_s = shaded.caustic_cpu_s;
-    stats.fallback_gathers = fallbacks;
-    stats.gather_rays = built.gather_rays + gather_rays;
 
     take_common_layers(shaded, out);
     out.influence = std::move(shaded.extra[influence_slot]);
@@ -132,6 +247,9 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     out.indirect_static = std::move(shaded.extra[indirect_static_slot]);
     out.static_records = record_picture(context.frame.camera, static_cache.records());
     out.dynamic_records = record_picture(context.frame.camera, dynamic_cache.records());
+    // Without a static frame every term of every pixel was computed.
+    if (!base) plan.changed.assign(size_t(context.frame.camera.width) * size_t(context.frame.camera.height), 15);
+    out.changed = changed_picture(context.frame.camera, plan.changed);
     stats.irradiance_photons = irradiance.computed();
     stats.total_s = total.elapsed_s();
     return out;

@@ -30,9 +30,17 @@ struct LocalizedFrame {
     Image influence;        // I relative to the static indirect irradiance (Fig. 4d, 5), at most 1000
     Image dynamic;          // the share of a pixel's camera rays that see a dynamic object
     Image static_records, dynamic_records;  // record positions (Fig. 3)
+    Image changed;          // with a static frame: the ChangedTerm bits of the terms redone (pixel_reuse.h)
     FrameStats stats;
 };
 
+/// The static frame of pixel reuse (pixel_reuse.h): `context`'s view shaded with the dynamic
+/// objects removed, from the segment's static cache and photon paths (which must be there).
+StaticFrame make_static_frame(const FrameContext& context, const StaticSolution& solution,
+                              const PhotonMappingSettings& photon, const LocalizedSettings& localized);
+
+/// One frame; with the solution's static frame, when its view and lights are this frame's, only
+/// the pixels the dynamic objects can change are shaded again (not for StaticCacheUse::frozen).
 LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution& solution,
                               const PhotonMappingSettings& photon, const LocalizedSettings& localized,
                               StaticCacheUse use);

@@ -8,17 +8,20 @@ namespace {
 
 /// The photons traced whole, or composed from the static paths; counts the paths retraced.
 TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                         const StaticPhotonPaths* paths) {
+                         const StaticPhotonPaths* paths, bool& caustic_changed) {
+    caustic_changed = true;
     if (!paths) return trace_photons(context, settings.photons);
     ComposedPhotons composed = compose_photons(context, *paths);
     stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
+    caustic_changed = composed.caustic_changed();
     return std::move(composed.maps);
 }
 
 /// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
 TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                                    const StaticPhotonPaths* paths) {
-    TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s, [&] { return frame_maps(context, settings, stats, paths); });
+                                    const StaticPhotonPaths* paths, bool& caustic_changed) {
+    TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s,
+                                     [&] { return frame_maps(context, settings, stats, paths, caustic_changed); });
     stats.global_photons_emitted = maps.global.emitted();
     stats.global_photons_stored = long(maps.global.size());
     stats.caustic_photons_emitted = maps.caustic.emitted();
@@ -32,7 +35,7 @@ TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMap
 
 FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
                            const StaticPhotonPaths* paths)
-    : maps(trace_counted_photons(context, settings, stats, paths)),
+    : maps(trace_counted_photons(context, settings, stats, paths, caustic_changed)),
       irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate,
                  surface_coverage(context, Visibility::everything)) {}
 

@@ -20,6 +20,7 @@ struct FramePhotons {
     FramePhotons(const FramePhotons&) = delete;
     FramePhotons& operator=(const FramePhotons&) = delete;
 
+    bool caustic_changed = true;  // the caustic map may differ from the static paths' (unknown without them)
     TracedPhotons maps;
     IrradiancePhotons irradiance;
 };

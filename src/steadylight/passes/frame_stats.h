@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <string>
 
 #include "steadylight/base/checkpoint.h"
@@ -23,6 +24,10 @@ struct FrameStats {
     long dynamic_photons_stored = 0;  // localized: positive and negative photons of the dynamic map
     long retraced_photon_paths = 0;   // photon paths traced this frame: all, or with reuse those
                                       // that meet a dynamic object (from there on)
+    long pixels_reused = 0;           // localized, still camera: pixels taken from the static frame,
+    long pixels_redone_but_direct = 0;  // shaded again without shadow rays,
+    long pixels_redone = 0;             // and shaded again whole (all zero: no static frame)
+    std::array<long, 4> pixels_changed{};  // pixels whose camera, direct, indirect, caustic term changed
     long irradiance_photons = 0;      // photons whose irradiance was computed (lazily, for gathers)
     long irradiance_records = 0;      // computed for this frame (localized: the dynamic cache, L_y)
     long static_records = 0;          // localized: records of the segment's static cache

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "steadylight/passes/segment_pass.h"
+#include "steadylight/passes/shading_pass.h"
 #include "steadylight/photons/photon_paths.h"
 
 namespace steadylight {
@@ -23,6 +24,7 @@ struct StaticSolution {
     bool loaded = false;    // read from the cache file instead of computed
     std::string file_note;  // why the file was not used, when it was not
     std::shared_ptr<const StaticPhotonPaths> photon_paths;  // null: frames trace all their photons
+    std::shared_ptr<const StaticFrame> static_frame;        // null: frames shade every pixel
 
     long records() const { return long(cache.records().size()); }
 };

@@ -33,19 +33,6 @@ void add_geometry(Hasher& h, const Geometry& geometry) {
     }
 }
 
-/// The first frame of each distinct camera view of the segment, in frame order.
-std::vector<int> distinct_views(const Scene& scene, const Segment& segment) {
-    std::vector<int> frames;
-    std::vector<Camera> views;
-    for (int frame = segment.first; frame <= segment.last; ++frame) {
-        const Camera camera = scene.evaluate(frame).camera;
-        if (std::any_of(views.begin(), views.end(), [&](const Camera& c) { return same_camera(c, camera); })) continue;
-        views.push_back(camera);
-        frames.push_back(frame);
-    }
-    return frames;
-}
-
 }  // namespace
 
 uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const PhotonMappingSettings& settings) {
@@ -123,6 +110,18 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
                                    Visibility::static_only, {}});
     }
     return cache;
+}
+
+std::vector<int> distinct_views(const Scene& scene, const Segment& segment) {
+    std::vector<int> frames;
+    std::vector<Camera> views;
+    for (int frame = segment.first; frame <= segment.last; ++frame) {
+        const Camera camera = scene.evaluate(frame).camera;
+        if (std::any_of(views.begin(), views.end(), [&](const Camera& c) { return same_camera(c, camera); })) continue;
+        views.push_back(camera);
+        frames.push_back(frame);
+    }
+    return frames;
 }
 
 StaticPhotonPaths trace_segment_photon_paths(const Scene& scene, RayTracer& tracer, const Segment& segment,

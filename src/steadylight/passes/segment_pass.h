@@ -26,6 +26,9 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
 IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
                                  const PhotonMappingSettings& settings, const StaticPhotonPaths* paths = nullptr);
 
+/// The first frame of each distinct camera view of the segment, in frame order.
+std::vector<int> distinct_views(const Scene& scene, const Segment& segment);
+
 /// The static photon paths of `segment` (photon_paths.h), which its frames compose their
 /// photon maps from instead of tracing them all. Moves `tracer` to the segment's first frame.
 StaticPhotonPaths trace_segment_photon_paths(const Scene& scene, RayTracer& tracer, const Segment& segment,

@@ -15,12 +15,8 @@ constexpr int tile_size = 16;
 /// Delta bounces up to this depth follow every lobe (glass: reflection and refraction).
 constexpr int max_split_depth = 2;
 
-/// The lighting at a pixel split the way the EXR's layers are.
-struct Components {
-    Rgb direct, indirect, caustic, specular;
-    ExtraLayers extra{};
-    Rgb sum() const { return direct + indirect + caustic + specular; }
-};
+/// The lighting along a camera ray split the way the EXR's layers are.
+using Components = PixelSums;
 
 /// Which of a pixel's light samples a camera ray takes: sample k of this ray is number
 /// first + k of `count`, stratified over the pixel (base/sampling.h stratified_2d), so the
@@ -45,8 +41,9 @@ Pcg32 pixel_stream(const Camera& camera, int x, int y, PixelStream stream, int s
 class Shader {
 public:
     Shader(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-           const IndirectIrradiance& indirect, const ReflectedRadiance& reflected)
-        : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect), m_reflected(reflected) {}
+           const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, Visibility visibility)
+        : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect), m_reflected(reflected),
+          m_visibility(visibility) {}
 
     Components shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel, const LightStrata& strata,
                      Pcg32& rng) const;
@@ -65,6 +62,7 @@ private:
     const PhotonMap& m_caustic;
     const IndirectIrradiance& m_indirect;
     const ReflectedRadiance& m_reflected;
+    const Visibility m_visibility;  // static_only: the static frame, with the dynamic objects removed
     mutable std::atomic<long> m_caustic_ns = 0;
 };
 
@@ -80,7 +78,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
         if (!light) continue;
         const Vec3 wi = frame.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
-        if (is_black(f) || m_context.tracer.occluded(spawn_ray_to(sp.p, sp.ng, light->p))) continue;
+        if (is_black(f) || m_context.tracer.occluded(spawn_ray_to(sp.p, sp.ng, light->p), m_visibility)) continue;
         sum += f * light->Li * (std::abs(wi.z) / light->pdf);
     }
     return sum / float(m_settings.direct_samples);
@@ -90,9 +88,10 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
                            const PixelSample& pixel, const LightStrata& strata, Components& c) const {
     // Textures multiply here, after the cache's interpolation: they are never blurred by it.
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
-    c.direct += direct_light(sp, frame, bsdf, wo, strata);
+    if (!pixel.skip_direct) c.direct += direct_light(sp, frame, bsdf, wo, strata);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
+    if (pixel.trace) pixel.trace->flags |= PixelTrace::caustic;
     const Stopwatch caustic_time;
     // A caustic estimate is reused by the pixel's other camera rays only where it is smoother than
     // the pixel (its radius at least the reach): a sharper one is estimated at each ray's own
@@ -121,9 +120,11 @@ Rgb Shader::trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray&
 
 Components Shader::shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel,
                          const LightStrata& strata, Pcg32& rng) const {
-    const std::optional<Hit> hit = m_context.tracer.intersect(ray);
+    const std::optional<Hit> hit = m_context.tracer.intersect(ray, m_visibility);
+    if (pixel.trace && depth > 0) pixel.trace->flags |= hit ? PixelTrace::chain : PixelTrace::chain | PixelTrace::open_chain;
     if (!hit) return {};
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
+    if (pixel.trace) pixel.trace->add_point(surface.p);
     Components c = shade_hit(ray, *hit, surface, depth, count_emission, pixel, strata, rng);
     // Light from a hit inside absorbing glass crossed its volume (the AOV layers are not light).
     const Rgb absorbed = volume_transmittance(m_context, surface, ray.d, hit->t);
@@ -139,7 +140,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     // An emitter seen by the camera is direct light (as bright as it is at this frame); seen
     // through a mirror the caller files it under specular.
     const Rgb Le = m_context.frame.emission[size_t(surface.object)];
-    if (count_emission && !is_black(Le)) c.direct += emitted_radiance_at(m_context, surface, -ray.d);
+    if (count_emission && !pixel.skip_direct && !is_black(Le)) c.direct += emitted_radiance_at(m_context, surface, -ray.d);
     const SurfacePoint sp = face_towards(surface, ray.d);
     const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
     const Bsdf& bsdf = *surface_bsdf;
@@ -151,15 +152,19 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         // over more, hence the factor 2.
         at.reach = 2 * m_context.frame.camera.pixel_footprint(hit.t);
         if (depth > 0) at.memo = at.caustic_memo = nullptr;
+        if (depth == 0 && pixel.trace) ++pixel.trace->surface_rays;
         shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, c);
-        if (const std::unique_ptr<Bsdf> coat = bsdf.non_diffuse_part()) c.specular = trace_coat(*coat, surface, ray, rng);
+        if (const std::unique_ptr<Bsdf> coat = bsdf.non_diffuse_part()) {
+            if (pixel.trace) pixel.trace->flags |= PixelTrace::coat;
+            c.specular = trace_coat(*coat, surface, ray, rng);
+        }
         return c;
     }
     // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
     // indirect light (emission is not counted twice). Mirrors and glass see emitters directly.
     // The BSDF is evaluated in the frame of the surface's own normals, as sample_bounce samples
     // it: rough glass tells inside from outside by them (the reflective BSDFs are two-sided).
-    if (!bsdf.is_delta()) {
+    if (!bsdf.is_delta() && !pixel.skip_direct) {
         const Frame own = Frame::from_normal(surface.nm);
         c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata);
     }
@@ -209,33 +214,50 @@ void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
 }
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected) {
+                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, const PixelReuse& reuse) {
     const Camera& camera = context.frame.camera;
     ShadedFrame out;
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular}) *image = Image(camera.width, camera.height);
     for (Image& image : out.extra) image = Image(camera.width, camera.height);
-    const Shader shader(context, settings, caustic, indirect, reflected);
+    if (reuse.keep) {
+        const size_t pixels = size_t(camera.width) * size_t(camera.height);
+        *reuse.keep = {context.frame, camera.width, camera.height, std::vector<PixelSums>(pixels), std::vector<PixelTrace>(pixels)};
+    }
+    const Shader shader(context, settings, caustic, indirect, reflected, reuse.visibility);
     const int n = settings.samples_per_pixel;
     const float inv_n = 1.0f / float(n);
     parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
-                // The same numbers for a pixel in every frame: where nothing changes, nothing
-                // flickers (paper §4; bit-identical static regions).
-                Pcg32 constants = pixel_stream(camera, x, y, PixelStream::constants);
-                const Vec2 shift = constants.next_vec2();
-                const LightStrata strata{0, uint32_t(n * settings.direct_samples), constants.next_vec2()};
-                Components sum;
-                PixelMemo memo, caustic_memo;
-                for (int s = 0; s < n; ++s) {
-                    const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
-                    const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-                    const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
-                    Pcg32 path = pixel_stream(camera, x, y, PixelStream::path, s);
-                    const Components c = shader.shade(ray, 0, true, {x, y, s, n, &memo, &caustic_memo}, ray_strata, path);
-                    if (!is_finite(c.sum())) continue;
-                    sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
-                    for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];
+                const size_t i = size_t(y) * size_t(camera.width) + size_t(x);
+                const PixelWork work = reuse.work ? (*reuse.work)[i] : PixelWork::redo;
+                PixelSums sum;
+                if (work == PixelWork::reuse) {
+                    sum = reuse.base->sums[i];
+                    if (reuse.reused_layers) reuse.reused_layers(x, y, reuse.base->traces[i], sum);
+                } else {
+                    // The same numbers for a pixel in every frame: where nothing changes, nothing
+                    // flickers (paper §4; bit-identical static regions).
+                    Pcg32 constants = pixel_stream(camera, x, y, PixelStream::constants);
+                    const Vec2 shift = constants.next_vec2();
+                    const LightStrata strata{0, uint32_t(n * settings.direct_samples), constants.next_vec2()};
+                    PixelMemo memo, caustic_memo;
+                    PixelSample pixel{x, y, 0, n, &memo, &caustic_memo};
+                    pixel.trace = reuse.keep ? &reuse.keep->traces[i] : nullptr;
+                    pixel.skip_direct = work == PixelWork::redo_but_direct;
+                    for (int s = 0; s < n; ++s) {
+                        const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
+                        const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
+                        const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
+                        Pcg32 path = pixel_stream(camera, x, y, PixelStream::path, s);
+                        pixel.sample = s;
+                        const Components c = shader.shade(ray, 0, true, pixel, ray_strata, path);
+                        if (!is_finite(c.sum())) continue;
+                        sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
+                        for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];
+                    }
+                    if (pixel.skip_direct) sum.direct = reuse.base->sums[i].direct;
+                    if (reuse.keep) reuse.keep->sums[i] = sum;
                 }
                 out.direct.at(x, y) = sum.direct * inv_n;
                 out.indirect.at(x, y) = sum.indirect * inv_n;

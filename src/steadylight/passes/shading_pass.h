@@ -9,6 +9,7 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -60,6 +61,49 @@ private:
     int m_count = 0;
 };
 
+/// What a pixel's shading went through, kept in the static frame so that a later frame can tell
+/// whether the pixel can change (pixel_reuse.h).
+struct PixelTrace {
+    enum Flag : uint8_t {
+        chain = 1,       // some ray went on from a mirror, glass or glossy surface
+        open_chain = 2,  // ...and left the scene
+        coat = 4,        // a coat reflected photon-mapped light (read from the global photons)
+        caustic = 8,     // caustic estimates were made
+        gather = 16,     // the method gathered anew (no cache record reached a point)
+    };
+    Vec3 lo{infinity, infinity, infinity}, hi{-infinity, -infinity, -infinity};  // box of every surface point hit
+    uint8_t flags = 0;
+    uint8_t surface_rays = 0;  // camera rays whose first hit is diffuse (they fill the method's layers)
+
+    void add_point(Vec3 p) { lo = min(lo, p), hi = max(hi, p); }
+};
+
+/// A pixel's terms summed over its camera rays (in ray order), before dividing by their count.
+struct PixelSums {
+    Rgb direct, indirect, caustic, specular;
+    ExtraLayers extra{};
+
+    Rgb sum() const { return direct + indirect + caustic + specular; }
+};
+
+/// The static frame of pixel reuse (pixel_reuse.h): every pixel's sums and trace, shaded with
+/// the dynamic objects removed.
+struct StaticFrame {
+    FrameState made_at;  // the view and lights it was shaded with
+    int width = 0, height = 0;
+    std::vector<PixelSums> sums;
+    std::vector<PixelTrace> traces;
+
+    static constexpr size_t bytes_per_pixel = sizeof(PixelSums) + sizeof(PixelTrace);
+};
+
+/// What a frame does with a pixel when it has a static frame.
+enum class PixelWork : uint8_t {
+    reuse,            // every term as the static frame has it
+    redo_but_direct,  // shade again, but the direct light (no shadow rays) is the static frame's
+    redo,             // shade again
+};
+
 /// Which camera ray of which pixel is being shaded.
 struct PixelSample {
     int x = 0, y = 0;
@@ -74,6 +118,10 @@ struct PixelSample {
     /// Reached through the less likely of two lobes both followed (glass's reflection): it counts
     /// for little, so where no record reaches a rough gather will do.
     bool minor_branch = false;
+    /// What the pixel's shading goes through, when the static frame is being made.
+    PixelTrace* trace = nullptr;
+    /// The direct light is taken from the static frame: no emission, no shadow rays.
+    bool skip_direct = false;
 };
 
 /// The values `compute()` returns at (sp, n), or those an earlier camera ray of the same pixel
@@ -103,8 +151,20 @@ struct ShadedFrame {
     double caustic_cpu_s = 0;  // time in caustic estimates, summed over threads
 };
 
+/// How shade_frame() treats pixels beyond shading them all: making a static frame, or reusing one.
+struct PixelReuse {
+    Visibility visibility = Visibility::everything;  // static_only: the static frame
+    StaticFrame* keep = nullptr;                      // filled with every pixel's sums and trace
+    const StaticFrame* base = nullptr;                // with `work`: what pixels take from
+    const std::vector<PixelWork>* work = nullptr;     // one per pixel, row by row
+    /// Gives a reused pixel's sums the method's layers that change between frames although its
+    /// terms do not (the localized method's influence).
+    std::function<void(int x, int y, const PixelTrace& trace, PixelSums& sums)> reused_layers;
+};
+
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected);
+                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected,
+                        const PixelReuse& reuse = {});
 
 /// Moves the shading pass's common layers into a frame that has members of the same names.
 template <class FrameImages>

@@ -206,7 +206,8 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     composed = compose_main(caustic, caustic_changes);
     out.maps.caustic = PhotonMap(std::move(composed.photons), caustic.count, caustic.photons, std::move(composed.base_ids),
                                  std::move(composed.added_ids));
-    out.retraced_paths += changed_count(caustic_changes);
+    out.caustic_retraced_paths = changed_count(caustic_changes);
+    out.retraced_paths += out.caustic_retraced_paths;
     return out;
 }
 

@@ -55,7 +55,11 @@ StaticPhotonPaths trace_static_photon_paths(const FrameContext& context, const P
 struct ComposedPhotons {
     TracedPhotons maps;
     long retraced_paths = 0;
+    long caustic_retraced_paths = 0;  // of them caustic ones
     bool caustic_traced = false;  // the caustic map was traced whole: its targets moved
+
+    /// Whether the caustic map may differ from the static paths' one.
+    bool caustic_changed() const { return caustic_traced || caustic_retraced_paths > 0; }
 };
 
 /// The maps trace_photons(context, paths.settings) gives, bit for bit, from `paths` (traced in

@@ -96,6 +96,8 @@ public:
         return emitted_radiance(m_object, m_Le, at.n, d) * std::abs(dot(at.n, d));
     }
 
+    BoundingSphere bounds() const override { return {m_center, m_bound_radius}; }
+
 private:
     /// Bounds the triangles by a sphere about their area-weighted centre, and keeps their
     /// normal if they are one flat, one-sided emitter.

@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "steadylight/base/bounding_sphere.h"
 #include "steadylight/scene/scene.h"
 
 namespace steadylight {
@@ -61,6 +62,8 @@ public:
     /// \brief Radiant intensity leaving `at` towards unit `d`, per unit of `at`'s pdf measure:
     /// Le |cos| on an emitting side of an area light (zero on the other), a lamp's intensity.
     virtual Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const = 0;
+    /// A sphere holding every point the light emits from (a point light's has radius 0).
+    virtual BoundingSphere bounds() const = 0;
 };
 
 /// Area light over the world-space surface of emissive object `object` at this frame, with the
@@ -95,6 +98,8 @@ public:
     /// direction is the caller's (power = emitted_intensity / (pdf of the point and direction)).
     std::optional<EmissionPoint> sample_emission_point(float u_select, Vec2 u_position) const;
     Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const { return m_lights[at.light]->emitted_intensity(at, d); }
+    /// Every light's bounds(), in the set's order.
+    std::vector<BoundingSphere> bounds() const;
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
     float pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const;
 

@@ -122,6 +122,12 @@ std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec3 n, Vec2 u) co
     return sample_chosen(i, lo, p_select, ref, u);
 }
 
+std::vector<BoundingSphere> LightSet::bounds() const {
+    std::vector<BoundingSphere> out;
+    for (const std::unique_ptr<Light>& light : m_lights) out.push_back(light->bounds());
+    return out;
+}
+
 float LightSet::pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const {
     const int i = m_light_of_object[size_t(object)];
     if (i < 0) return 0;

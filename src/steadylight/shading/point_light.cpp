@@ -68,6 +68,7 @@ public:
     }
 
     Rgb emitted_intensity(const EmissionPoint&, Vec3 d) const override { return m_intensity * falloff(d); }
+    BoundingSphere bounds() const override { return {m_desc.position, 0}; }
 
 private:
     /// 1 inside the spot's inner cone, 0 outside it, smoothstep between (pbrt-v4 SpotLight).

@@ -189,12 +189,34 @@ void RayTracer::add_instanced_object(int object, unsigned mask) {
     m_has_static_instances |= mask == static_mask;
 }
 
+namespace {
+
+/// A sphere about the box of `object_scene` placed by `t`, padded for rounding.
+BoundingSphere world_bounds(RTCScene object_scene, const Transform& t) {
+    RTCBounds box;
+    rtcGetSceneBounds(object_scene, &box);
+    Vec3 lo{infinity, infinity, infinity}, hi = -lo;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p = t.point({corner & 1 ? box.upper_x : box.lower_x, corner & 2 ? box.upper_y : box.lower_y,
+                                corner & 4 ? box.upper_z : box.lower_z});
+        lo = min(lo, p), hi = max(hi, p);
+    }
+    BoundingSphere s = BoundingSphere::of_box(lo, hi);
+    if (!s.empty()) s.radius = s.radius * 1.0001f + ray_epsilon(max(-lo, hi));
+    return s;
+}
+
+}  // namespace
+
 void RayTracer::set_frame(const FrameState& frame) {
+    m_dynamic_bounds.clear();
     for (size_t id = 0; id < m_instance_object.size(); ++id) {
-        const Transform& t = frame.world_from_object[size_t(m_instance_object[id])];
+        const int object = m_instance_object[id];
+        const Transform& t = frame.world_from_object[size_t(object)];
         RTCGeometry instance = rtcGetGeometry(m_instance_scene, unsigned(id));
         rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &t.m[0][0]);
         rtcCommitGeometry(instance);
+        if (m_scene.object(object).is_dynamic()) m_dynamic_bounds.push_back(world_bounds(m_object_scenes[size_t(object)], t));
     }
     rtcCommitScene(m_instance_scene);
     RTCBounds bounds;

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "steadylight/base/bounding_sphere.h"
 #include "steadylight/base/ray.h"
 #include "steadylight/scene/scene.h"
 
@@ -48,6 +49,8 @@ public:
     /// Exactly intersect()'s own decision, without its query of the static scene: the instance
     /// query it makes next, cut at the same distance.
     bool meets_dynamic(const Ray& ray, float static_t) const;
+    /// A sphere about each dynamic object as placed at this frame (about its box, padded).
+    const std::vector<BoundingSphere>& dynamic_bounds() const { return m_dynamic_bounds; }
 
     /// The Embree scenes, for the benchmark that compares this interface with raw Embree calls.
     RTCScene static_embree_scene() const { return m_static_scene; }
@@ -71,6 +74,7 @@ private:
     std::vector<int> m_instance_object;           // instance scene geomID -> object
     bool m_has_static_instances = false;
     Vec3 m_instance_bounds_lo, m_instance_bounds_hi;  // of the instance scene at this frame; empty if none
+    std::vector<BoundingSphere> m_dynamic_bounds;
 };
 
 /// One flat Embree scene holding every object placed as at `frame`, for the benchmark that

@@ -1,0 +1,47 @@
+// Bounding spheres and the conservative tests pixel reuse makes with them (passes/pixel_reuse.h):
+// whether a sphere may meet the segments between two others. Conservative means a "no" is
+// certain and a "yes" only possible.
+#pragma once
+
+#include <limits>
+
+#include "steadylight/base/vec.h"
+
+namespace steadylight {
+
+struct BoundingSphere {
+    Vec3 center;
+    float radius = -1;  // negative: empty
+
+    bool empty() const { return radius < 0; }
+
+    /// The sphere about the box [lo, hi] (empty when lo > hi on some axis).
+    static BoundingSphere of_box(Vec3 lo, Vec3 hi) {
+        if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return {};
+        return {(lo + hi) * 0.5f, length(hi - lo) * 0.5f};
+    }
+};
+
+/// Whether `s` may meet a segment from a point of sphere `from` to a point of sphere `to`. Every
+/// such segment lies in the convex hull of the two spheres, the union over t in [0, 1] of the
+/// spheres about lerp(centres, t) with radius lerp(radii, t); the distance from s's centre to
+/// sphere t, |c - x(t)| - r(t), is convex in t, so a ternary search finds its least value.
+/// `slack` widens the test (rounding, ray offsets).
+inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& from, const BoundingSphere& to, float slack) {
+    if (s.empty() || from.empty() || to.empty()) return false;
+    const auto gap = [&](float t) {
+        return length(s.center - lerp(from.center, to.center, t)) - (from.radius + (to.radius - from.radius) * t);
+    };
+    float lo = 0, hi = 1;
+    for (int step = 0; step < 40; ++step) {
+        const float a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+        if (gap(a) < gap(b))
+            hi = b;
+        else
+            lo = a;
+    }
+    const float least = std::min({gap(0), gap(1), gap((lo + hi) / 2)});
+    return least <= s.radius + slack;
+}
+
+}  // namespace steadylight

@@ -1,0 +1,91 @@
+#include "steadylight/passes/pixel_reuse.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "steadylight/base/parallel.h"
+
+namespace steadylight {
+
+void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask) {
+    if (sphere.empty()) return;
+    const auto mark = [&](int x0, int y0, int x1, int y1) {
+        x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, camera.width - 1), y1 = std::min(y1, camera.height - 1);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
+    };
+    // The corners of the sphere's cube: their screen box holds the sphere's, if all are in front.
+    float x_lo = infinity, y_lo = infinity, x_hi = -infinity, y_hi = -infinity;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 offset{corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f};
+        const std::optional<Vec2> at = camera.project(sphere.center + offset * sphere.radius);
+        if (!at || !std::isfinite(at->x) || !std::isfinite(at->y)) return mark(0, 0, camera.width - 1, camera.height - 1);
+        x_lo = std::min(x_lo, at->x), x_hi = std::max(x_hi, at->x);
+        y_lo = std::min(y_lo, at->y), y_hi = std::max(y_hi, at->y);
+    }
+    if (x_hi < -1 || y_hi < -1 || x_lo > float(camera.width) + 1 || y_lo > float(camera.height) + 1) return;
+    // A pixel more each way: rounding in the projection.
+    mark(int(std::floor(x_lo)) - 1, int(std::floor(y_lo)) - 1, int(std::ceil(x_hi)) + 1, int(std::ceil(y_hi)) + 1);
+}
+
+PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {
+    const size_t pixels = base.traces.size();
+    PixelPlan plan;
+    plan.work.resize(pixels);
+    plan.changed.assign(pixels, 0);
+    std::vector<uint8_t> seen(pixels, 0);  // a camera ray may meet a dynamic object
+    for (const BoundingSphere& object : changes.dynamic) mark_sphere_on_screen(camera, object, seen);
+    parallel_for_chunks(long(pixels), 4096, [&](long begin, long end) {
+        for (long i = begin; i < end; ++i) {
+            const PixelTrace& trace = base.traces[size_t(i)];
+            const BoundingSphere points = BoundingSphere::of_box(trace.lo, trace.hi);
+            // Shadow rays start a ray offset off their surface; a millionth of the scene's size is more.
+            const float slack = points.empty() ? 0 : 1e-5f * (1 + length(points.center) + points.radius);
+            const bool chains = trace.flags & PixelTrace::chain;
+            uint8_t changed = 0;
+            if (seen[size_t(i)] || (trace.flags & PixelTrace::open_chain)) changed |= camera_term;
+            for (const BoundingSphere& object : changes.dynamic) {
+                if (chains && may_meet_segments(object, points, points, slack)) changed |= camera_term;
+                for (const BoundingSphere& light : changes.lights)
+                    if (may_meet_segments(object, points, light, slack)) changed |= direct_term;
+            }
+            if (changes.indirect[size_t(i)] || (trace.flags & (PixelTrace::gather | PixelTrace::coat)) ||
+                (chains && (changes.records_changed || changes.caustics_changed)))
+                changed |= indirect_term;
+            if ((trace.flags & PixelTrace::caustic) && changes.caustics_changed) changed |= caustic_term;
+            plan.changed[size_t(i)] = changed;
+            plan.work[size_t(i)] = !changed                                                     ? PixelWork::reuse
+                                   : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo
+                                                                                       : PixelWork::redo_but_direct;
+        }
+    });
+    for (size_t i = 0; i < pixels; ++i) {
+        const PixelWork work = plan.work[i];
+        ++(work == PixelWork::reuse ? plan.reused : work == PixelWork::redo ? plan.redone : plan.redone_but_direct);
+        for (int bit = 0; bit < 4; ++bit) plan.changed_pixels[bit] += (plan.changed[i] >> bit) & 1;
+    }
+    return plan;
+}
+
+size_t memory_available() {
+    const size_t physical = size_t(sysconf(_SC_PHYS_PAGES)) * size_t(sysconf(_SC_PAGE_SIZE));
+    std::ifstream limit("/sys/fs/cgroup/memory.max");  // cgroup v2; "max" when unlimited
+    size_t cgroup = 0;
+    if (limit >> cgroup && cgroup > 0) return std::min(physical, cgroup);
+    return physical;
+}
+
+bool same_view_and_lights(const Scene& scene, const FrameState& frame, const FrameState& static_frame) {
+    const Camera &a = frame.camera, &b = static_frame.camera;
+    if (!(a.world_from_camera == b.world_from_camera) || a.tan_half_fov_y != b.tan_half_fov_y || a.width != b.width ||
+        a.height != b.height)
+        return false;
+    if (frame.emission != static_frame.emission || frame.point_light_intensity != static_frame.point_light_intensity) return false;
+    for (const int object : scene.dynamic_objects())
+        if (!is_black(frame.emission[size_t(object)])) return false;
+    return true;
+}
+
+}  // namespace steadylight

@@ -1,0 +1,181 @@
+// Pixel reuse (pixel_reuse.h): its conservative tests find every ray that can meet what moved,
+// and a frame that reuses the static frame equals the same frame shaded whole, bit for bit,
+// layer for layer, on the scenes whose camera stands still.
+#include "steadylight/passes/pixel_reuse.h"
+
+#include <gtest/gtest.h>
+
+#include "steadylight/base/rng.h"
+#include "steadylight/base/sampling.h"
+#include "steadylight/passes/frame_pass.h"
+#include "support/scene_builder.h"
+
+namespace steadylight {
+namespace {
+
+const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
+
+/// The test's own oracle: the distance from p to the segment [a, b].
+float distance_to_segment(Vec3 p, Vec3 a, Vec3 b) {
+    const Vec3 ab = b - a;
+    const float t = std::clamp(dot(p - a, ab) / std::max(length2(ab), 1e-12f), 0.0f, 1.0f);
+    return length(p - (a + ab * t));
+}
+
+Vec3 random_in_ball(Pcg32& rng, const BoundingSphere& s) {
+    return s.center + sample_uniform_sphere(rng.next_vec2()) * (s.radius * std::cbrt(rng.next_float()));
+}
+
+BoundingSphere random_sphere(Pcg32& rng, float max_radius) {
+    return {Vec3{rng.next_float(), rng.next_float(), rng.next_float()} * 4 - Vec3{2, 2, 2}, rng.next_float() * max_radius};
+}
+
+TEST(BoundingSphere, SegmentsBetweenTwoSpheresThroughAThirdAreNeverMissed) {
+    Pcg32 rng(7);
+    int no = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const BoundingSphere from = random_sphere(rng, 0.5f), to = random_sphere(rng, 0.5f), object = random_sphere(rng, 0.4f);
+        const bool answer = may_meet_segments(object, from, to, 0);
+        no += !answer;
+        if (answer) continue;
+        for (int segment = 0; segment < 64; ++segment) {
+            const Vec3 a = random_in_ball(rng, from), b = random_in_ball(rng, to);
+            ASSERT_GT(distance_to_segment(object.center, a, b), object.radius) << "trial " << trial;
+        }
+    }
+    // Not an answer that is always yes: most random spheres are clear of each other's hull.
+    EXPECT_GT(no, 1500);
+}
+
+TEST(PixelReuse, ScreenBoxHoldsEveryPixelWhoseRaysPassThroughTheSphere) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
+    scene.set_resolution(64, 48);
+    const Camera camera = scene.evaluate(0).camera;
+    const Vec3 eye = camera.generate_ray(0, 0).o;
+    Pcg32 rng(3);
+    for (int trial = 0; trial < 40; ++trial) {
+        // Spheres about points the camera sees, some reaching behind it.
+        const Ray through = camera.generate_ray(rng.next_float() * 64, rng.next_float() * 48);
+        const BoundingSphere sphere{through.o + through.d * (rng.next_float() * 6), 0.05f + rng.next_float() * 0.6f};
+        std::vector<uint8_t> mask(64 * 48, 0);
+        mark_sphere_on_screen(camera, sphere, mask);
+        int marked = 0;
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 64; ++x) {
+                marked += mask[size_t(y * 64 + x)];
+                for (int k = 0; k < 8; ++k) {
+                    const Ray ray = camera.generate_ray(float(x) + rng.next_float(), float(y) + rng.next_float());
+                    const float t = std::max(dot(sphere.center - ray.o, ray.d), 0.0f);
+                    if (length(ray.o + ray.d * t - sphere.center) <= sphere.radius)
+                        ASSERT_TRUE(mask[size_t(y * 64 + x)]) << "trial " << trial << " pixel " << x << "," << y;
+                }
+            }
+        if (length(sphere.center - eye) > 2 * sphere.radius + 1) EXPECT_LT(marked, 64 * 48 / 2) << "trial " << trial;
+    }
+}
+
+PhotonMappingSettings small_settings() {
+    PhotonMappingSettings settings;
+    settings.photons = {.global_photons = 40'000, .caustic_photons = 20'000};
+    settings.shading.samples_per_pixel = 4;
+    return settings;
+}
+
+/// A segment's static solution with its photon paths and, made at `view`, its static frame.
+StaticSolution solution_with_static_frame(const Scene& scene, RayTracer& tracer, const PhotonMappingSettings& settings,
+                                          int view) {
+    const Segment segment{0, scene.frame_count() - 1};
+    auto paths = std::make_shared<const StaticPhotonPaths>(trace_segment_photon_paths(scene, tracer, segment, settings.photons));
+    StaticSolution solution{run_segment_pass(scene, tracer, segment, settings, paths.get())};
+    solution.photon_paths = paths;
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PlacedFrame placed(scene, tracer, bsdfs, view);
+    solution.static_frame = std::make_shared<const StaticFrame>(make_static_frame(placed.context(), solution, settings, {}));
+    return solution;
+}
+
+/// Every layer of two frames, bit for bit, but the one that marks the pixels redone.
+void expect_same_layers(const LocalizedFrame& a, const LocalizedFrame& b, const std::string& what) {
+    const std::pair<const char*, Image LocalizedFrame::*> layers[] = {
+        {"beauty", &LocalizedFrame::beauty},   {"direct", &LocalizedFrame::direct},
+        {"indirect", &LocalizedFrame::indirect}, {"caustic", &LocalizedFrame::caustic},
+        {"specular", &LocalizedFrame::specular}, {"indirect_static", &LocalizedFrame::indirect_static},
+        {"L_y", &LocalizedFrame::L_y},         {"L_t", &LocalizedFrame::L_t},
+        {"influence", &LocalizedFrame::influence}, {"dynamic", &LocalizedFrame::dynamic},
+        {"static_records", &LocalizedFrame::static_records}, {"dynamic_records", &LocalizedFrame::dynamic_records}};
+    for (const auto& [name, layer] : layers) {
+        const Image &x = a.*layer, &y = b.*layer;
+        ASSERT_EQ(x.width, y.width) << what << " " << name;
+        int differing = 0;
+        for (int py = 0; py < x.height; ++py)
+            for (int px = 0; px < x.width; ++px) differing += !(x.at(px, py) == y.at(px, py));
+        EXPECT_EQ(differing, 0) << what << " " << name;
+    }
+}
+
+class PixelReuseOnScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/" + GetParam() + ".json"));
+    scene.set_resolution(48, 36);
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    for (const int frame : {scene.frame_count() / 2, 1}) {
+        const PlacedFrame placed(scene, tracer, bsdfs, frame);
+        const LocalizedFrame reused = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+        std::shared_ptr<const StaticFrame> kept = std::move(solution.static_frame);
+        const LocalizedFrame whole = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+        solution.static_frame = std::move(kept);
+        const std::string what = GetParam() + " frame " + std::to_string(frame);
+        expect_same_layers(reused, whole, what);
+        // Reuse did something: some pixels kept their shadow rays' light or more.
+        EXPECT_GT(reused.stats.pixels_reused + reused.stats.pixels_redone_but_direct, 48 * 36 / 4) << what;
+        EXPECT_EQ(whole.stats.pixels_reused + whole.stats.pixels_redone_but_direct + whole.stats.pixels_redone, 0) << what;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, PixelReuseOnScene,
+                         ::testing::Values("ball", "table", "corridor", "glass_move", "mirror_room", "blender_glass"),
+                         [](const auto& info) { return info.param; });
+
+TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {
+    const Scene scene(testing::two_rooms_one_moving_ball());
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    std::vector<LocalizedFrame> frames;
+    for (const int frame : {0, 1}) {
+        const PlacedFrame placed(scene, tracer, bsdfs, frame);
+        frames.push_back(run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected));
+    }
+    const LocalizedFrame &a = frames[0], &b = frames[1];
+    int clear = 0;
+    for (int y = 0; y < a.beauty.height; ++y)
+        for (int x = 0; x < a.beauty.width; ++x)
+            if (a.changed.at(x, y).r == 0 && b.changed.at(x, y).r == 0) {
+                ++clear;
+                EXPECT_EQ(a.beauty.at(x, y), b.beauty.at(x, y)) << "pixel " << x << "," << y;
+            }
+    // The room without the ball is reused whole.
+    EXPECT_GT(clear, a.beauty.width * a.beauty.height / 3);
+    EXPECT_EQ(b.stats.pixels_reused, clear);
+}
+
+TEST(PixelReuse, AnotherViewShadesEveryPixel) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/flythrough.json"));
+    scene.set_resolution(32, 24);
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PlacedFrame placed(scene, tracer, bsdfs, scene.frame_count() / 2);
+    const LocalizedFrame frame = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+    EXPECT_EQ(frame.stats.pixels_reused + frame.stats.pixels_redone_but_direct + frame.stats.pixels_redone, 0);
+    EXPECT_EQ(frame.changed.at(5, 5).r, 15.0f);  // every term computed
+}
+
+}  // namespace
+}  // namespace steadylight
