@@ -81,7 +81,8 @@ TEST(Methods, FramesHaveTheTablesLayersAndStatistics) {
             names.push_back(layer.name);
             EXPECT_EQ(layer.image.pixels.size(), rendered.beauty.pixels.size()) << layer.name;
             // Grey: one value per pixel, the influence and the masks.
-            EXPECT_EQ(layer.grey, layer.name == "influence" || layer.name == "dynamic" || layer.name.ends_with("records"))
+            EXPECT_EQ(layer.grey, layer.name == "influence" || layer.name == "dynamic" || layer.name == "changed" ||
+                                      layer.name.ends_with("records"))
                 << layer.name;
             for (const Rgb& p : layer.image.pixels) ASSERT_TRUE(is_finite(p) && max_component(p) <= 1000) << layer.name;
         }
