@@ -4,7 +4,7 @@
 # --no-reuse, one after the other on the same machine, each run from an empty folder (its
 # static pass included, as a user's first run). Prints per run the whole run's wall time, the
 # static frame's and paths' set-up from the log, the mean per frame of every phase, of the
-# pixels reused / redone without their shadow rays / redone whole, of the pixels per changed
+# pixels reused / looked up again / redone without their shadow rays / redone whole, of the pixels per changed
 # term and of the photon paths traced; and whether the two runs' PNGs are byte for byte the
 # same (then the truth suite's error and temporal noise are the same too). Prints, asserts
 # nothing.
@@ -40,9 +40,10 @@ print(f"  wall {wall:.1f} s for {n} frames ({wall / n:.3f} s a frame)")
 print(f"  set-up: {setup}")
 print(f"  per frame: total {secs('total'):.3f} s = photons {secs('photon_tracing'):.3f} + L_y {secs('cache'):.3f} + influence {secs('influence'):.3f}"
       f" + L_t {secs('correction'):.3f} + shading {secs('direct'):.3f} (caustics {secs('caustics'):.3f} cpu)")
-total = pix("reused") + pix("redone_but_direct") + pix("redone")
+total = pix("reused") + pix("looked_up_again") + pix("redone_but_direct") + pix("redone")
 if total:
-    print(f"  pixels a frame: reused {pix('reused'):.0f}, redone but direct {pix('redone_but_direct'):.0f}, redone {pix('redone'):.0f};"
+    print(f"  pixels a frame: reused {pix('reused'):.0f}, looked up again {pix('looked_up_again'):.0f},"
+          f" redone but direct {pix('redone_but_direct'):.0f}, redone {pix('redone'):.0f};"
           f" changed camera {pix('changed_camera'):.0f}, direct {pix('changed_direct'):.0f}, indirect {pix('changed_indirect'):.0f},"
           f" caustic {pix('changed_caustic'):.0f}")
 print(f"  photon paths traced a frame: {mean(lambda s: s['photons']['retraced_paths']):.0f}")
@@ -56,6 +57,7 @@ for scene in "${scenes[@]}"; do
     extra=(); [ $mode = no-reuse ] && extra=(--no-reuse)
     [ -n "$frames" ] && extra+=(--frames "$frames")
     start=$(date +%s.%N)
+    rm -f "$work/$mode.log"
     "$binary" render "scenes/$scene.json" --size "$size" --out "$work/$mode" --quiet --log "$work/$mode.log" "${extra[@]}"
     wall=$(python3 -c "import sys; print(float(sys.argv[2]) - float(sys.argv[1]))" "$start" "$(date +%s.%N)")
     walls+=("$wall")

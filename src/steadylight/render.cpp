@@ -70,7 +70,7 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& se
         return nullptr;
     }
     const Camera& camera = scene.evaluate(segment.first).camera;
-    const double bytes = double(camera.width) * double(camera.height) * double(StaticFrame::bytes_per_pixel);
+    const double bytes = double(camera.width) * double(camera.height) * double(StaticFrame::bytes_per_pixel(settings.photon.shading.samples_per_pixel));
     const double budget = double(memory_available()) / 4;
     if (bytes > budget) {
         spdlog::info("pixel reuse: off: the static frame would need {:.0f} MB, more than a quarter of the {:.0f} MB "

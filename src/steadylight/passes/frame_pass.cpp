@@ -14,6 +14,16 @@
 namespace steadylight {
 namespace {
 
+/// Marks the pixels whose caustic estimates may read photons that changed: on the screen, the
+/// estimates' reach about each (every pixel when the map changed whole).
+std::vector<uint8_t> caustic_changes(const Camera& camera, const FramePhotons::CausticChanges& changes,
+                                     const DensitySettings& estimate) {
+    std::vector<uint8_t> mask(size_t(camera.width) * size_t(camera.height), changes.everywhere ? 1 : 0);
+    if (!changes.everywhere)
+        for (const Vec3 p : changes.points) mark_sphere_on_screen(camera, {p, estimate.max_radius * 1.001f}, mask);
+    return mask;
+}
+
 /// The static records with the dynamic map's irradiance estimate added at each (paper §3.3, L_t).
 /// `changed`, when given, gets a flag per record: whether its irradiance changed.
 IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic, const DensitySettings& density,
@@ -51,7 +61,8 @@ std::vector<uint8_t> indirect_changes(const Camera& camera, const IrradianceCach
     if (!influence.values.empty())
         for (int y = 0; y < camera.height; ++y)
             for (int x = 0; x < camera.width; ++x)
-                if (blend_weight(influence.at(x, y), localized) > 0) mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
+                if (blend_weight(influence.at(x, y), localized) > 0)
+                    mask[size_t(y) * size_t(camera.width) + size_t(x)] |= FrameChanges::blend;
     return mask;
 }
 
@@ -145,6 +156,25 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         for (int ray = 0; ray < trace.surface_rays; ++ray) sum += Rgb{1, 1, 1} * std::min(influence_at(x, y), max_influence_shown);
         sums.extra[influence_slot] = sum;
     };
+    // A pixel whose corrected records changed, and nothing else: L_t looked up again at each of
+    // its look-ups, then each camera ray's share summed in ray order, as shading sums it (L_i is
+    // L_t there, the blend weight being 0, and its L_t layer the same product).
+    reuse.look_up_again = [&](int, int, size_t pixel, PixelSums& sums) {
+        const StaticFrame& base = *reuse.base;
+        const PixelLookUps& look_ups = base.look_ups[pixel];
+        std::array<std::optional<Rgb>, PixelMemo::capacity> L_t;
+        Rgb indirect;
+        for (size_t ray = pixel * size_t(base.samples); ray < (pixel + 1) * size_t(base.samples); ++ray) {
+            const uint8_t i = base.ray_look_up[ray];
+            if (i == StaticFrame::no_look_up) continue;
+            std::optional<Rgb>& E = L_t[i];
+            // Covered, as in the static frame: the corrected records are the static ones, moved nowhere.
+            if (!E) E = lighting.transported.interpolate(look_ups.p[i], look_ups.n[i]);
+            if (!E) E = lighting.transported.interpolate(look_ups.p[i], look_ups.n[i], 2).value();
+            indirect += base.ray_albedo[ray] * *E;
+        }
+        sums.indirect = sums.extra[L_t_slot] = indirect;
+    };
     ShadedFrame shaded = shade_frame(context, photon.shading, lighting.caustic, indirect, [&](const Ray& ray) {
         return gather_from_photons(context, lighting.irradiance, max_radius, reuse.visibility, ray).L;
     }, reuse);
@@ -220,14 +250,17 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     PixelReuse reuse;
     PixelPlan plan;
     if (base) {
-        const FrameChanges changes{context.tracer.dynamic_bounds(), context.lights.bounds(),
+        const FrameChanges changes{context.tracer.dynamic_bounds(),
+                                   context.lights.bounds(),
                                    indirect_changes(context.frame.camera, static_cache, changed_records, influence, localized),
                                    std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
-                                   traced.caustic_changed && photons.caustic.size() > 0};
+                                   traced.caustic_changes.everywhere || !traced.caustic_changes.points.empty(),
+                                   caustic_changes(context.frame.camera, traced.caustic_changes, photon.shading.caustic_estimate)};
         plan = plan_pixels(context.frame.camera, *base, changes);
         reuse.base = base;
         reuse.work = &plan.work;
-        stats.pixels_reused = plan.reused, stats.pixels_redone_but_direct = plan.redone_but_direct, stats.pixels_redone = plan.redone;
+        stats.pixels_reused = plan.reused, stats.pixels_looked_up_again = plan.looked_up_again;
+        stats.pixels_redone_but_direct = plan.redone_but_direct, stats.pixels_redone = plan.redone;
         std::copy(std::begin(plan.changed_pixels), std::end(plan.changed_pixels), stats.pixels_changed.begin());
     }
 

@@ -8,20 +8,19 @@ namespace {
 
 /// The photons traced whole, or composed from the static paths; counts the paths retraced.
 TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                         const StaticPhotonPaths* paths, bool& caustic_changed) {
-    caustic_changed = true;
+                         const StaticPhotonPaths* paths, FramePhotons::CausticChanges& caustic_changes) {
     if (!paths) return trace_photons(context, settings.photons);
     ComposedPhotons composed = compose_photons(context, *paths);
     stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
-    caustic_changed = composed.caustic_changed();
+    caustic_changes = {composed.caustic_traced, std::move(composed.changed_caustic_points)};
     return std::move(composed.maps);
 }
 
 /// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
 TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                                    const StaticPhotonPaths* paths, bool& caustic_changed) {
+                                    const StaticPhotonPaths* paths, FramePhotons::CausticChanges& caustic_changes) {
     TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s,
-                                     [&] { return frame_maps(context, settings, stats, paths, caustic_changed); });
+                                     [&] { return frame_maps(context, settings, stats, paths, caustic_changes); });
     stats.global_photons_emitted = maps.global.emitted();
     stats.global_photons_stored = long(maps.global.size());
     stats.caustic_photons_emitted = maps.caustic.emitted();
@@ -35,7 +34,7 @@ TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMap
 
 FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
                            const StaticPhotonPaths* paths)
-    : maps(trace_counted_photons(context, settings, stats, paths, caustic_changed)),
+    : maps(trace_counted_photons(context, settings, stats, paths, caustic_changes)),
       irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate,
                  surface_coverage(context, Visibility::everything)) {}
 

@@ -20,7 +20,12 @@ struct FramePhotons {
     FramePhotons(const FramePhotons&) = delete;
     FramePhotons& operator=(const FramePhotons&) = delete;
 
-    bool caustic_changed = true;  // the caustic map may differ from the static paths' (unknown without them)
+    /// How the caustic map differs from the static paths' one: everywhere (traced whole, or no
+    /// static paths to tell), or where these photons were removed or added.
+    struct CausticChanges {
+        bool everywhere = true;
+        std::vector<Vec3> points;
+    } caustic_changes;
     TracedPhotons maps;
     IrradiancePhotons irradiance;
 };

@@ -25,6 +25,7 @@ struct FrameStats {
     long retraced_photon_paths = 0;   // photon paths traced this frame: all, or with reuse those
                                       // that meet a dynamic object (from there on)
     long pixels_reused = 0;           // localized, still camera: pixels taken from the static frame,
+    long pixels_looked_up_again = 0;  // their indirect light looked up again, no ray traced,
     long pixels_redone_but_direct = 0;  // shaded again without shadow rays,
     long pixels_redone = 0;             // and shaded again whole (all zero: no static frame)
     std::array<long, 4> pixels_changed{};  // pixels whose camera, direct, indirect, caustic term changed

@@ -54,16 +54,23 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
             if (changes.indirect[size_t(i)] || (trace.flags & (PixelTrace::gather | PixelTrace::coat)) ||
                 (chains && (changes.records_changed || changes.caustics_changed)))
                 changed |= indirect_term;
-            if ((trace.flags & PixelTrace::caustic) && changes.caustics_changed) changed |= caustic_term;
+            if ((trace.flags & PixelTrace::caustic) && changes.caustic[size_t(i)]) changed |= caustic_term;
             plan.changed[size_t(i)] = changed;
+            // Looked up again where only corrected records changed for a pixel whose every look-up was kept.
+            const bool look_up_again = changed == indirect_term && changes.indirect[size_t(i)] == FrameChanges::records &&
+                                       !(trace.flags & (PixelTrace::chain | PixelTrace::coat | PixelTrace::gather | PixelTrace::unkept));
             plan.work[size_t(i)] = !changed                                                     ? PixelWork::reuse
+                                   : look_up_again                                     ? PixelWork::look_up_again
                                    : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo
                                                                                        : PixelWork::redo_but_direct;
         }
     });
     for (size_t i = 0; i < pixels; ++i) {
         const PixelWork work = plan.work[i];
-        ++(work == PixelWork::reuse ? plan.reused : work == PixelWork::redo ? plan.redone : plan.redone_but_direct);
+        ++(work == PixelWork::reuse           ? plan.reused
+           : work == PixelWork::look_up_again ? plan.looked_up_again
+           : work == PixelWork::redo          ? plan.redone
+                                              : plan.redone_but_direct);
         for (int bit = 0; bit < 4; ++bit) plan.changed_pixels[bit] += (plan.changed[i] >> bit) & 1;
     }
     return plan;

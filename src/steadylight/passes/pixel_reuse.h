@@ -9,10 +9,13 @@
 //           a light
 //   indirect  a corrected static record whose reach covers the pixel's screen position changed,
 //           the influence blends in L_y, or the pixel gathered anew or read photons (a coat)
-//   caustic the frame's caustic photons differ from the static ones and the pixel read them
+//   caustic a caustic photon that changed lies within an estimate's reach of the pixel on the
+//           screen (or the caustic map changed whole) and the pixel shaded a diffuse point
 // No bit: the pixel is the static frame's, bit for bit what shading it would give. Only the
-// indirect or caustic bits: it is shaded again without its shadow rays (its direct light is the
-// static frame's). Else it is shaded again whole. Points seen through mirrors and glass are not
+// indirect bit, from changed records alone: its indirect light is looked up again where its
+// camera rays looked it up in the static frame, no ray traced. Only the indirect or caustic
+// bits: it is shaded again without its shadow rays (its direct light is the static frame's).
+// Else it is shaded again whole. Points seen through mirrors and glass are not
 // on the screen where their pixel is, so a pixel with chains counts as changed whenever a record
 // or a caustic photon changed anywhere.
 #pragma once
@@ -32,16 +35,18 @@ enum ChangedTerm : uint8_t { camera_term = 1, direct_term = 2, indirect_term = 4
 struct FrameChanges {
     std::vector<BoundingSphere> dynamic;  // the dynamic objects at this frame
     std::vector<BoundingSphere> lights;
-    std::vector<uint8_t> indirect;        // per pixel, row by row: its indirect light may change
+    enum IndirectChange : uint8_t { records = 1, blend = 2 };
+    std::vector<uint8_t> indirect;        // per pixel, row by row: IndirectChange bits, why its indirect light may change
     bool records_changed = false;         // some corrected record differs from the static one
-    bool caustics_changed = false;        // the caustic map differs from the static one
+    bool caustics_changed = false;        // the caustic map differs from the static one somewhere
+    std::vector<uint8_t> caustic;         // per pixel: a diffuse point there may read changed caustic photons
 };
 
 /// The work of every pixel of a frame, the terms that made it, and how many of each.
 struct PixelPlan {
     std::vector<PixelWork> work;
     std::vector<uint8_t> changed;  // ChangedTerm bits
-    long reused = 0, redone_but_direct = 0, redone = 0;
+    long reused = 0, looked_up_again = 0, redone_but_direct = 0, redone = 0;
     long changed_pixels[4] = {};   // per ChangedTerm bit, in bit order
 };
 

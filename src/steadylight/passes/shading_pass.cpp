@@ -38,6 +38,23 @@ Pcg32 pixel_stream(const Camera& camera, int x, int y, PixelStream stream, int s
     return Pcg32(hash_ids(uint64_t(y) * uint64_t(camera.width) + uint64_t(x), uint64_t(stream), uint64_t(sample)));
 }
 
+/// Keeps where a camera ray's indirect light came from: its look-up (the pixel memo's entry)
+/// and the albedo that multiplied it. A ray whose value the memo did not keep, or whose layers
+/// show another albedo (fill_layers takes the one seen head-on), marks its pixel `unkept`.
+void keep_look_up(const PixelSample& pixel, const Bsdf& bsdf, Rgb albedo_over_pi) {
+    StaticFrame& kept = *pixel.kept;
+    const int entry = pixel.memo ? pixel.memo->last_used() : -1;
+    if (entry < 0 || bsdf.diffuse_reflectance({0, 0, 1}) * inv_pi != albedo_over_pi) {
+        pixel.trace->flags |= PixelTrace::unkept;
+        return;
+    }
+    const size_t ray = pixel.pixel_index * size_t(kept.samples) + size_t(pixel.sample);
+    kept.ray_look_up[ray] = uint8_t(entry);
+    kept.ray_albedo[ray] = albedo_over_pi;
+    std::tie(kept.look_ups[pixel.pixel_index].p[size_t(entry)], kept.look_ups[pixel.pixel_index].n[size_t(entry)]) =
+        pixel.memo->point_of(entry);
+}
+
 class Shader {
 public:
     Shader(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
@@ -90,8 +107,10 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
     if (!pixel.skip_direct) c.direct += direct_light(sp, frame, bsdf, wo, strata);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
-    if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
+    if (depth == 0 && pixel.kept) keep_look_up(pixel, bsdf, albedo_over_pi);
+    // A diffuse point reads the caustic map, an empty one too: a frame's may not be empty.
     if (pixel.trace) pixel.trace->flags |= PixelTrace::caustic;
+    if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
     const Stopwatch caustic_time;
     // A caustic estimate is reused by the pixel's other camera rays only where it is smoother than
     // the pixel (its radius at least the reach): a sharper one is estimated at each ray's own
@@ -204,12 +223,17 @@ const PixelMemo::Values* PixelMemo::find(const SurfacePoint& sp, Vec3 n, float r
     constexpr float min_cos_normals = 0.99f;  // about 8 degrees
     for (int i = 0; i < m_count; ++i) {
         const Entry& e = m_entries[size_t(i)];
-        if (e.object == sp.object && dot(e.n, n) > min_cos_normals && length2(e.p - sp.p) <= reach * reach) return &e.values;
+        if (e.object == sp.object && dot(e.n, n) > min_cos_normals && length2(e.p - sp.p) <= reach * reach) {
+            m_last = i;
+            return &e.values;
+        }
     }
+    m_last = -1;
     return nullptr;
 }
 
 void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
+    m_last = m_count < capacity ? m_count : -1;
     if (m_count < capacity) m_entries[size_t(m_count++)] = {sp.object, sp.p, n, values};
 }
 
@@ -219,12 +243,14 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
     ShadedFrame out;
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular}) *image = Image(camera.width, camera.height);
     for (Image& image : out.extra) image = Image(camera.width, camera.height);
+    const int n = settings.samples_per_pixel;
     if (reuse.keep) {
         const size_t pixels = size_t(camera.width) * size_t(camera.height);
-        *reuse.keep = {context.frame, camera.width, camera.height, std::vector<PixelSums>(pixels), std::vector<PixelTrace>(pixels)};
+        *reuse.keep = {context.frame, camera.width, camera.height, n, std::vector<PixelSums>(pixels),
+                       std::vector<PixelTrace>(pixels), std::vector<PixelLookUps>(pixels),
+                       std::vector<uint8_t>(pixels * size_t(n), StaticFrame::no_look_up), std::vector<Rgb>(pixels * size_t(n))};
     }
     const Shader shader(context, settings, caustic, indirect, reflected, reuse.visibility);
-    const int n = settings.samples_per_pixel;
     const float inv_n = 1.0f / float(n);
     parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
         for (int y = y0; y < y1; ++y)
@@ -232,9 +258,10 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                 const size_t i = size_t(y) * size_t(camera.width) + size_t(x);
                 const PixelWork work = reuse.work ? (*reuse.work)[i] : PixelWork::redo;
                 PixelSums sum;
-                if (work == PixelWork::reuse) {
+                if (work == PixelWork::reuse || work == PixelWork::look_up_again) {
                     sum = reuse.base->sums[i];
                     if (reuse.reused_layers) reuse.reused_layers(x, y, reuse.base->traces[i], sum);
+                    if (work == PixelWork::look_up_again) reuse.look_up_again(x, y, i, sum);
                 } else {
                     // The same numbers for a pixel in every frame: where nothing changes, nothing
                     // flickers (paper §4; bit-identical static regions).
@@ -244,6 +271,8 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                     PixelMemo memo, caustic_memo;
                     PixelSample pixel{x, y, 0, n, &memo, &caustic_memo};
                     pixel.trace = reuse.keep ? &reuse.keep->traces[i] : nullptr;
+                    pixel.kept = reuse.keep;
+                    pixel.pixel_index = i;
                     pixel.skip_direct = work == PixelWork::redo_but_direct;
                     for (int s = 0; s < n; ++s) {
                         const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);

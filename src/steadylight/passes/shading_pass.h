@@ -44,11 +44,17 @@ class PixelMemo {
 public:
     using Values = std::array<Rgb, 3>;  // what the method needs to remember (e.g. L_y and L_t)
 
+    static constexpr int capacity = 4;
+
     /// Values stored for a point of the same object within `reach` of sp.p, with a normal close to n.
     const Values* find(const SurfacePoint& sp, Vec3 n, float reach) const;
     /// Remembers values at (sp, n); when full, the values are simply not kept.
     void add(const SurfacePoint& sp, Vec3 n, const Values& values);
     void clear() { m_count = 0; }
+    /// The entry the last find() found or add() kept; -1 when it found none or kept nothing.
+    int last_used() const { return m_last; }
+    /// Where entry `i`'s values were computed: the point and the normal.
+    std::pair<Vec3, Vec3> point_of(int i) const { return {m_entries[size_t(i)].p, m_entries[size_t(i)].n}; }
 
 private:
     struct Entry {
@@ -56,9 +62,9 @@ private:
         Vec3 p, n;
         Values values;
     };
-    static constexpr int capacity = 4;
     std::array<Entry, capacity> m_entries;
     int m_count = 0;
+    mutable int m_last = -1;
 };
 
 /// What a pixel's shading went through, kept in the static frame so that a later frame can tell
@@ -68,8 +74,9 @@ struct PixelTrace {
         chain = 1,       // some ray went on from a mirror, glass or glossy surface
         open_chain = 2,  // ...and left the scene
         coat = 4,        // a coat reflected photon-mapped light (read from the global photons)
-        caustic = 8,     // caustic estimates were made
+        caustic = 8,     // a diffuse point was shaded: it reads the caustic map
         gather = 16,     // the method gathered anew (no cache record reached a point)
+        unkept = 32,     // some camera ray's indirect light is not in the kept look-ups (KeptLookUps)
     };
     Vec3 lo{infinity, infinity, infinity}, hi{-infinity, -infinity, -infinity};  // box of every surface point hit
     uint8_t flags = 0;
@@ -86,20 +93,34 @@ struct PixelSums {
     Rgb sum() const { return direct + indirect + caustic + specular; }
 };
 
+/// Where a pixel's camera rays looked up their indirect light (PixelMemo's entries), so that a
+/// frame can look it up again there without tracing them.
+struct PixelLookUps {
+    std::array<Vec3, PixelMemo::capacity> p, n;
+};
+
 /// The static frame of pixel reuse (pixel_reuse.h): every pixel's sums and trace, shaded with
-/// the dynamic objects removed.
+/// the dynamic objects removed, and where its camera rays looked up indirect light.
 struct StaticFrame {
+    static constexpr uint8_t no_look_up = 255;
+
     FrameState made_at;  // the view and lights it was shaded with
-    int width = 0, height = 0;
+    int width = 0, height = 0, samples = 0;  // samples: camera rays per pixel
     std::vector<PixelSums> sums;
     std::vector<PixelTrace> traces;
+    std::vector<PixelLookUps> look_ups;
+    std::vector<uint8_t> ray_look_up;  // per pixel and camera ray: the look-up its indirect light came from, or no_look_up
+    std::vector<Rgb> ray_albedo;       // per pixel and camera ray: the albedo / pi that multiplied it
 
-    static constexpr size_t bytes_per_pixel = sizeof(PixelSums) + sizeof(PixelTrace);
+    static size_t bytes_per_pixel(int samples) {
+        return sizeof(PixelSums) + sizeof(PixelTrace) + sizeof(PixelLookUps) + size_t(samples) * (1 + sizeof(Rgb));
+    }
 };
 
 /// What a frame does with a pixel when it has a static frame.
 enum class PixelWork : uint8_t {
     reuse,            // every term as the static frame has it
+    look_up_again,    // only the indirect light changes: look it up again where the camera rays did, none traced
     redo_but_direct,  // shade again, but the direct light (no shadow rays) is the static frame's
     redo,             // shade again
 };
@@ -120,6 +141,8 @@ struct PixelSample {
     bool minor_branch = false;
     /// What the pixel's shading goes through, when the static frame is being made.
     PixelTrace* trace = nullptr;
+    StaticFrame* kept = nullptr;  // ...and where it keeps the pixel's look-ups
+    size_t pixel_index = 0;
     /// The direct light is taken from the static frame: no emission, no shadow rays.
     bool skip_direct = false;
 };
@@ -160,6 +183,9 @@ struct PixelReuse {
     /// Gives a reused pixel's sums the method's layers that change between frames although its
     /// terms do not (the localized method's influence).
     std::function<void(int x, int y, const PixelTrace& trace, PixelSums& sums)> reused_layers;
+    /// Gives a PixelWork::look_up_again pixel's sums (the static frame's) its indirect light and
+    /// the method's layers, looked up again at the static frame's look-ups of pixel `index`.
+    std::function<void(int x, int y, size_t index, PixelSums& sums)> look_up_again;
 };
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,

@@ -204,6 +204,9 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     }
     const std::vector<ChunkChanges> caustic_changes = retrace_changed(context, paths.settings, caustic, MapKind::caustic, false);
     composed = compose_main(caustic, caustic_changes);
+    for (size_t i = 0; i < composed.base_ids.size(); ++i)
+        if (composed.base_ids[i] == PointIndex::removed) out.changed_caustic_points.push_back(caustic.photons.photons()[i].p);
+    for (const uint32_t i : composed.added_ids) out.changed_caustic_points.push_back(composed.photons[i].p);
     out.maps.caustic = PhotonMap(std::move(composed.photons), caustic.count, caustic.photons, std::move(composed.base_ids),
                                  std::move(composed.added_ids));
     out.caustic_retraced_paths = changed_count(caustic_changes);

@@ -57,9 +57,7 @@ struct ComposedPhotons {
     long retraced_paths = 0;
     long caustic_retraced_paths = 0;  // of them caustic ones
     bool caustic_traced = false;  // the caustic map was traced whole: its targets moved
-
-    /// Whether the caustic map may differ from the static paths' one.
-    bool caustic_changed() const { return caustic_traced || caustic_retraced_paths > 0; }
+    std::vector<Vec3> changed_caustic_points;  // unless traced whole: where static caustic photons went or new ones are
 };
 
 /// The maps trace_photons(context, paths.settings) gives, bit for bit, from `paths` (traced in
