@@ -62,13 +62,31 @@ std::string method_comparison_plot(const std::vector<StatsSeries>& all, const st
     return build_svg_line_plot(plot);
 }
 
+/// `fields` of one series, one line each; fields that are zero in every frame are left out, and
+/// the plot too when all are.
+std::string fields_plot(const StatsSeries& series, const std::string& title, const std::string& y_label,
+                        const std::vector<const StatsField*>& fields) {
+    LinePlot plot{title, "frame", y_label, {}};
+    for (const StatsField* field : fields)
+        if (std::any_of(series.frames.begin(), series.frames.end(), [&](const FrameStats& s) { return field->value(s) > 0; }))
+            plot.series.push_back(plot_series(series, field->label, *field));
+    return plot.series.empty() ? "" : build_svg_line_plot(plot) + "\n";
+}
+
 /// The phases of one series, one line each; phases that took no time in any frame are left out.
 std::string phase_plot(const StatsSeries& series, bool several_scenes) {
-    LinePlot plot{"time per phase: " + series_name(series, several_scenes), "frame", "seconds", {}};
-    for (const StatsField& field : phase_time_fields())
-        if (std::any_of(series.frames.begin(), series.frames.end(), [&](const FrameStats& s) { return field.value(s) > 0; }))
-            plot.series.push_back(plot_series(series, field.label, field));
-    return build_svg_line_plot(plot);
+    std::vector<const StatsField*> fields;
+    for (const StatsField& field : phase_time_fields()) fields.push_back(&field);
+    return fields_plot(series, "time per phase: " + series_name(series, several_scenes), "seconds", fields);
+}
+
+/// What a series' frames did anew and what they reused (docs/localized.md, "Pixels reused"):
+/// the pixels per kind of work, and those whose camera, direct, indirect, caustic term changed.
+std::string reuse_plot(const StatsSeries& series, bool several_scenes) {
+    std::vector<const StatsField*> fields;
+    for (const StatsField& field : count_fields())
+        if (std::string_view(field.label).starts_with("pixels")) fields.push_back(&field);
+    return fields_plot(series, "pixels per frame: " + series_name(series, several_scenes), "pixels", fields);
 }
 
 std::string plots_html(const std::vector<StatsSeries>& all) {
@@ -79,7 +97,10 @@ std::string plots_html(const std::vector<StatsSeries>& all) {
     std::string html = "<div class=\"plots\">\n";
     html += method_comparison_plot(all, "time per frame", "seconds", total, several_scenes) + "\n";
     html += method_comparison_plot(all, "irradiance records computed per frame", "records", records, several_scenes) + "\n";
-    for (const StatsSeries& series : all) html += phase_plot(series, several_scenes) + "\n";
+    const auto paths = std::find_if(count_fields().begin(), count_fields().end(),
+                                    [](const StatsField& field) { return std::string_view(field.label) == "photon paths traced"; });
+    html += method_comparison_plot(all, "photon paths traced per frame", "paths", *paths, several_scenes) + "\n";
+    for (const StatsSeries& series : all) html += phase_plot(series, several_scenes) + reuse_plot(series, several_scenes);
     return html + "</div>\n";
 }
 
