@@ -130,7 +130,8 @@ void add_render_options(CLI::App* command, RenderSettings& settings, RawOptions&
     command->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
     command->add_flag("!--no-reuse", settings.reuse,
                      "photon, localized, frozen: trace every photon path in every frame instead of retracing only "
-                     "the static paths that dynamic objects meet (the same images, slower; for comparison)");
+                     "the static paths that dynamic objects meet, and (localized, still camera) shade every pixel "
+                     "instead of those the dynamic objects can change (the same images, slower; for comparison)");
 }
 
 /// The console and resume options of `render` and `bake`.

@@ -24,7 +24,8 @@ struct RenderSettings : MethodSettings {
     bool show_progress = true;
     bool aov_pngs = false;              // also write each EXR layer as <scene>_<frame:04>.<layer>.png
     bool reuse = true;                  // photon paths kept per segment, retraced where dynamic objects
-                                        // meet them (the images are the same either way: --no-reuse)
+                                        // meet them, and pixels reused for a still camera (localized;
+                                        // the images are the same either way: --no-reuse)
     OutputSettings output;              // EXR pixel type, PNG view transform, --video
 };
 
