@@ -11,23 +11,40 @@ namespace steadylight {
 
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask) {
     if (sphere.empty()) return;
-    const auto mark = [&](int x0, int y0, int x1, int y1) {
-        x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, camera.width - 1), y1 = std::min(y1, camera.height - 1);
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
-    };
-    // The corners of the sphere's cube: their screen box holds the sphere's, if all are in front.
-    float x_lo = infinity, y_lo = infinity, x_hi = -infinity, y_hi = -infinity;
-    for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 offset{corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f};
-        const std::optional<Vec2> at = camera.project(sphere.center + offset * sphere.radius);
-        if (!at || !std::isfinite(at->x) || !std::isfinite(at->y)) return mark(0, 0, camera.width - 1, camera.height - 1);
-        x_lo = std::min(x_lo, at->x), x_hi = std::max(x_hi, at->x);
-        y_lo = std::min(y_lo, at->y), y_hi = std::max(y_hi, at->y);
+    const Vec3 eye = camera.generate_ray(0, 0).o;
+    const Vec3 to_centre = sphere.center - eye;
+    const float distance = length(to_centre);
+    // A pixel's rays leave within this angle of its centre's ray: half its diagonal, widest at
+    // the image's centre, with a margin for rounding.
+    const float pixel_angle = std::atan(std::sqrt(2.0f) * camera.tan_half_fov_y / float(camera.height)) * 1.05f + 1e-6f;
+    // Beyond this angle from the centre's direction, a ray misses the sphere.
+    const float reach = distance > sphere.radius ? std::asin(sphere.radius / distance) + pixel_angle : pi;
+    float x_lo = 0, y_lo = 0, x_hi = float(camera.width), y_hi = float(camera.height);
+    if (reach < pi / 2) {
+        // The corners of the sphere's cube: their screen box holds the sphere's, if all are in front.
+        x_lo = y_lo = infinity, x_hi = y_hi = -infinity;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 offset{corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f};
+            const std::optional<Vec2> at = camera.project(sphere.center + offset * sphere.radius);
+            if (!at || !std::isfinite(at->x) || !std::isfinite(at->y)) {
+                x_lo = y_lo = 0, x_hi = float(camera.width), y_hi = float(camera.height);
+                break;
+            }
+            x_lo = std::min(x_lo, at->x), x_hi = std::max(x_hi, at->x);
+            y_lo = std::min(y_lo, at->y), y_hi = std::max(y_hi, at->y);
+        }
     }
     if (x_hi < -1 || y_hi < -1 || x_lo > float(camera.width) + 1 || y_lo > float(camera.height) + 1) return;
-    // A pixel more each way: rounding in the projection.
-    mark(int(std::floor(x_lo)) - 1, int(std::floor(y_lo)) - 1, int(std::ceil(x_hi)) + 1, int(std::ceil(y_hi)) + 1);
+    // A pixel more each way (rounding in the projection), then the pixels whose rays come within
+    // the sphere's angular reach.
+    const int x0 = std::max(int(std::floor(x_lo)) - 1, 0), y0 = std::max(int(std::floor(y_lo)) - 1, 0);
+    const int x1 = std::min(int(std::ceil(x_hi)) + 1, camera.width - 1), y1 = std::min(int(std::ceil(y_hi)) + 1, camera.height - 1);
+    const float min_cos = reach < pi ? std::cos(reach) : -2.0f;
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            const Vec3 d = camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f).d;
+            if (dot(d, to_centre) >= min_cos * distance) mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
+        }
 }
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {

@@ -52,8 +52,9 @@ struct PixelPlan {
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes);
 
-/// Sets `mask` at every pixel whose camera rays may pass through `sphere`: its screen box, or
-/// every pixel when the sphere reaches behind the camera.
+/// Sets `mask` at every pixel whose camera rays may pass through `sphere`: within the sphere's
+/// screen box (the whole screen when it reaches behind the camera), the pixels whose centre's
+/// ray comes within the sphere's angular radius plus half a pixel's diagonal of its centre.
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask);
 
 /// Bytes of memory this process may use: the cgroup's limit where there is one, else the

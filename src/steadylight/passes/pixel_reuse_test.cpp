@@ -47,7 +47,7 @@ TEST(BoundingSphere, SegmentsBetweenTwoSpheresThroughAThirdAreNeverMissed) {
     EXPECT_GT(no, 1500);
 }
 
-TEST(PixelReuse, ScreenBoxHoldsEveryPixelWhoseRaysPassThroughTheSphere) {
+TEST(PixelReuse, ScreenMarksHoldEveryPixelWhoseRaysPassThroughTheSphere) {
     Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
     scene.set_resolution(64, 48);
     const Camera camera = scene.evaluate(0).camera;
@@ -63,8 +63,10 @@ TEST(PixelReuse, ScreenBoxHoldsEveryPixelWhoseRaysPassThroughTheSphere) {
         for (int y = 0; y < 48; ++y)
             for (int x = 0; x < 64; ++x) {
                 marked += mask[size_t(y * 64 + x)];
-                for (int k = 0; k < 8; ++k) {
-                    const Ray ray = camera.generate_ray(float(x) + rng.next_float(), float(y) + rng.next_float());
+                for (int k = 0; k < 12; ++k) {
+                    // The pixel's corners, then points inside it.
+                    const Vec2 at = k < 4 ? Vec2{float(k & 1), float(k >> 1)} : rng.next_vec2();
+                    const Ray ray = camera.generate_ray(float(x) + at.x, float(y) + at.y);
                     const float t = std::max(dot(sphere.center - ray.o, ray.d), 0.0f);
                     if (length(ray.o + ray.d * t - sphere.center) <= sphere.radius)
                         ASSERT_TRUE(mask[size_t(y * 64 + x)]) << "trial " << trial << " pixel " << x << "," << y;
