@@ -29,6 +29,11 @@ struct BoundingSphere {
 /// `slack` widens the test (rounding, ray offsets).
 inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& from, const BoundingSphere& to, float slack) {
     if (s.empty() || from.empty() || to.empty()) return false;
+    // First the capsule of the larger radius about the centres' segment, which holds the hull:
+    // most spheres are clear of it, and it costs one distance.
+    const Vec3 along = to.center - from.center;
+    const float t_nearest = std::clamp(dot(s.center - from.center, along) / std::max(length2(along), 1e-30f), 0.0f, 1.0f);
+    if (length(s.center - (from.center + along * t_nearest)) > s.radius + std::max(from.radius, to.radius) + slack) return false;
     const auto gap = [&](float t) {
         return length(s.center - lerp(from.center, to.center, t)) - (from.radius + (to.radius - from.radius) * t);
     };

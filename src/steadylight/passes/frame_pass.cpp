@@ -246,9 +246,10 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     });
     const IrradianceCache& transported = frozen ? static_cache : corrected;
 
-    // With a static frame, which pixels to shade again (pixel_reuse.h).
+    // With a static frame, which pixels to shade again (pixel_reuse.h): part of the shading phase.
     PixelReuse reuse;
     PixelPlan plan;
+    const Stopwatch planning;
     if (base) {
         const FrameChanges changes{context.tracer.dynamic_bounds(),
                                    context.lights.bounds(),
@@ -266,10 +267,12 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
 
     // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects.
     stats.gather_rays = built.gather_rays;
+    const double planning_s = planning.elapsed_s();
     ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
         return shade_localized(context, {static_cache, dynamic_cache, transported, influence, irradiance, photons.caustic, frozen},
                                photon, localized, reuse, stats);
     });
+    stats.direct_s += planning_s;
     stats.caustics_s = shaded.caustic_cpu_s;
 
     take_common_layers(shaded, out);

@@ -9,7 +9,7 @@
 
 namespace steadylight {
 
-void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask) {
+void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask, Outline outline) {
     if (sphere.empty()) return;
     const Vec3 eye = camera.generate_ray(0, 0).o;
     const Vec3 to_centre = sphere.center - eye;
@@ -39,12 +39,12 @@ void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, s
     // the sphere's angular reach.
     const int x0 = std::max(int(std::floor(x_lo)) - 1, 0), y0 = std::max(int(std::floor(y_lo)) - 1, 0);
     const int x1 = std::min(int(std::ceil(x_hi)) + 1, camera.width - 1), y1 = std::min(int(std::ceil(y_hi)) + 1, camera.height - 1);
-    const float min_cos = reach < pi ? std::cos(reach) : -2.0f;
+    const bool round = outline == Outline::round && reach < pi;
+    const float min_cos = round ? std::cos(reach) : -2.0f;
     for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-            const Vec3 d = camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f).d;
-            if (dot(d, to_centre) >= min_cos * distance) mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
-        }
+        for (int x = x0; x <= x1; ++x)
+            if (!round || dot(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f).d, to_centre) >= min_cos * distance)
+                mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
 }
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {
@@ -53,7 +53,7 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
     plan.work.resize(pixels);
     plan.changed.assign(pixels, 0);
     std::vector<uint8_t> seen(pixels, 0);  // a camera ray may meet a dynamic object
-    for (const BoundingSphere& object : changes.dynamic) mark_sphere_on_screen(camera, object, seen);
+    for (const BoundingSphere& object : changes.dynamic) mark_sphere_on_screen(camera, object, seen, Outline::round);
     parallel_for_chunks(long(pixels), 4096, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
             const PixelTrace& trace = base.traces[size_t(i)];

@@ -52,10 +52,15 @@ struct PixelPlan {
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes);
 
-/// Sets `mask` at every pixel whose camera rays may pass through `sphere`: within the sphere's
-/// screen box (the whole screen when it reaches behind the camera), the pixels whose centre's
-/// ray comes within the sphere's angular radius plus half a pixel's diagonal of its centre.
-void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask);
+/// How closely mark_sphere_on_screen() follows a sphere: its screen box (cheap: for many small
+/// spheres), or within the box the pixels whose centre's ray comes within the sphere's angular
+/// radius plus half a pixel's diagonal of its centre (a ray per pixel: for a few large ones).
+enum class Outline { box, round };
+
+/// Sets `mask` at every pixel whose camera rays may pass through `sphere` (the whole screen when
+/// it reaches behind the camera).
+void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
+                           Outline outline = Outline::box);
 
 /// Bytes of memory this process may use: the cgroup's limit where there is one, else the
 /// machine's physical memory.

@@ -58,7 +58,7 @@ TEST(PixelReuse, ScreenMarksHoldEveryPixelWhoseRaysPassThroughTheSphere) {
         const Ray through = camera.generate_ray(rng.next_float() * 64, rng.next_float() * 48);
         const BoundingSphere sphere{through.o + through.d * (rng.next_float() * 6), 0.05f + rng.next_float() * 0.6f};
         std::vector<uint8_t> mask(64 * 48, 0);
-        mark_sphere_on_screen(camera, sphere, mask);
+        mark_sphere_on_screen(camera, sphere, mask, trial % 2 ? Outline::round : Outline::box);
         int marked = 0;
         for (int y = 0; y < 48; ++y)
             for (int x = 0; x < 64; ++x) {
