@@ -59,15 +59,12 @@ bool reuses_photon_paths(const RenderSettings& settings) {
     return settings.reuse && method_info(settings.method).reads.photon;
 }
 
-/// The static frame of pixel reuse (passes/pixel_reuse.h) when the localized method renders two
-/// or more frames of a segment whose camera does not move and the frame fits in a quarter of the
-/// memory available; else null (a fallback, with a log line for the last two, not an error).
+/// The static frame of pixel reuse (passes/pixel_reuse.h) when the localized method renders a
+/// segment whose camera does not move and the frame fits in a quarter of the memory available;
+/// else null (a fallback, with a log line, not an error).
 std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
-                                                        const Segment& segment, const StaticSolution& solution,
-                                                        size_t frames_to_render) {
+                                                        const Segment& segment, const StaticSolution& solution) {
     if (!settings.reuse || settings.method != Method::localized || !solution.photon_paths) return nullptr;
-    // The static frame costs about as much as a frame: it pays from the second frame on.
-    if (frames_to_render < 2) return nullptr;
     if (distinct_views(scene, segment).size() != 1) {
         spdlog::info("pixel reuse: off for frames {}-{}: the camera moves", segment.first, segment.last);
         return nullptr;
@@ -90,10 +87,8 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& se
 }
 
 /// What every frame of `segment` starts from: the method's static pass (or its file), and the
-/// static photon paths when frames reuse them, and the static frame when `frames_to_render` of it
-/// may use one. Only for methods that have a static pass or reuse paths.
-StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                size_t frames_to_render) {
+/// static photon paths when frames reuse them. Only for methods that have either.
+StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
     std::shared_ptr<const StaticPhotonPaths> paths;
     if (reuses_photon_paths(settings)) {
         const Stopwatch time;
@@ -104,7 +99,7 @@ StaticSolution segment_solution(const RenderSettings& settings, const Scene& sce
     }
     if (!method_info(settings.method).has_static_pass) return {IrradianceCache(settings.photon.cache), 0, false, "", std::move(paths)};
     StaticSolution solution = static_pass(settings, scene, tracer, segment, std::move(paths));
-    solution.static_frame = segment_static_frame(settings, scene, tracer, segment, solution, frames_to_render);
+    solution.static_frame = segment_static_frame(settings, scene, tracer, segment, solution);
     return solution;
 }
 
@@ -249,7 +244,7 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
                 if (claim) {
                     // The segment's static pass runs (or is loaded) with its first frame rendered here.
                     if (!solution && (method_info(settings.method).has_static_pass || reuses_photon_paths(settings)))
-                        solution = segment_solution(settings, scene, tracer, segment, segment_frames.size());
+                        solution = segment_solution(settings, scene, tracer, segment);
                     if (interrupt_after == rendered_here) std::raise(SIGINT);
                     const Stopwatch time;
                     RenderedFrame rendered = render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);
