@@ -108,6 +108,30 @@ RTCRay make_embree_ray(const Ray& ray, Visibility visibility) {
     return r;
 }
 
+/// A sphere about `geometry` in its own space: the sphere itself, or a mesh's vertices about
+/// their box's centre (tighter than the sphere about the box: a ball's is 1.7 times its radius).
+BoundingSphere object_bounds(const Geometry& geometry) {
+    if (const auto* sphere = std::get_if<Sphere>(&geometry)) return {sphere->center, sphere->radius};
+    const TriangleMesh& mesh = std::get<TriangleMesh>(geometry);
+    Vec3 lo{infinity, infinity, infinity}, hi = -lo;
+    for (const Vec3 p : mesh.positions) lo = min(lo, p), hi = max(hi, p);
+    BoundingSphere bounds = BoundingSphere::of_box(lo, hi);
+    if (bounds.empty()) return bounds;
+    bounds.radius = 0;
+    for (const Vec3 p : mesh.positions) bounds.radius = std::max(bounds.radius, length(p - bounds.center));
+    return bounds;
+}
+
+/// `bounds` placed by `t` (its radius scaled by t's largest axis scale), padded for rounding.
+BoundingSphere placed_bounds(const BoundingSphere& bounds, const Transform& t) {
+    if (bounds.empty()) return bounds;
+    float scale = 0;
+    for (const Vec3 axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}) scale = std::max(scale, length(t.vector(axis)));
+    const Vec3 center = t.point(bounds.center);
+    const float radius = bounds.radius * scale;
+    return {center, radius * 1.0001f + ray_epsilon(max(-center, center) + Vec3{1, 1, 1} * radius)};
+}
+
 }  // namespace
 
 RayTracer::RayTracer(const Scene& scene, const FrameState& frame) : m_scene(scene) {
@@ -169,6 +193,8 @@ void RayTracer::add_instanced_object(int object, unsigned mask) {
     RTCScene object_scene = rtcNewScene(embree_device());
     rtcSetSceneBuildQuality(object_scene, RTC_BUILD_QUALITY_HIGH);
     const Geometry& geometry = m_scene.object(object).geometry;
+    m_object_bounds.resize(m_scene.objects().size());
+    m_object_bounds[size_t(object)] = object_bounds(geometry);
     if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) {
         const RTCGeometry g = make_triangle_geometry(*mesh, Transform{});
         attach_alpha_test(g, object);
@@ -189,25 +215,6 @@ void RayTracer::add_instanced_object(int object, unsigned mask) {
     m_has_static_instances |= mask == static_mask;
 }
 
-namespace {
-
-/// A sphere about the box of `object_scene` placed by `t`, padded for rounding.
-BoundingSphere world_bounds(RTCScene object_scene, const Transform& t) {
-    RTCBounds box;
-    rtcGetSceneBounds(object_scene, &box);
-    Vec3 lo{infinity, infinity, infinity}, hi = -lo;
-    for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 p = t.point({corner & 1 ? box.upper_x : box.lower_x, corner & 2 ? box.upper_y : box.lower_y,
-                                corner & 4 ? box.upper_z : box.lower_z});
-        lo = min(lo, p), hi = max(hi, p);
-    }
-    BoundingSphere s = BoundingSphere::of_box(lo, hi);
-    if (!s.empty()) s.radius = s.radius * 1.0001f + ray_epsilon(max(-lo, hi));
-    return s;
-}
-
-}  // namespace
-
 void RayTracer::set_frame(const FrameState& frame) {
     m_dynamic_bounds.clear();
     for (size_t id = 0; id < m_instance_object.size(); ++id) {
@@ -216,7 +223,8 @@ void RayTracer::set_frame(const FrameState& frame) {
         RTCGeometry instance = rtcGetGeometry(m_instance_scene, unsigned(id));
         rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &t.m[0][0]);
         rtcCommitGeometry(instance);
-        if (m_scene.object(object).is_dynamic()) m_dynamic_bounds.push_back(world_bounds(m_object_scenes[size_t(object)], t));
+        if (m_scene.object(object).is_dynamic())
+            m_dynamic_bounds.push_back(placed_bounds(m_object_bounds[size_t(object)], t));
     }
     rtcCommitScene(m_instance_scene);
     RTCBounds bounds;

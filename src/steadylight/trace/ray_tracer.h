@@ -74,7 +74,8 @@ private:
     std::vector<int> m_instance_object;           // instance scene geomID -> object
     bool m_has_static_instances = false;
     Vec3 m_instance_bounds_lo, m_instance_bounds_hi;  // of the instance scene at this frame; empty if none
-    std::vector<BoundingSphere> m_dynamic_bounds;
+    std::vector<BoundingSphere> m_object_bounds;   // per object, in its own space (instanced objects only)
+    std::vector<BoundingSphere> m_dynamic_bounds;  // the dynamic objects' at this frame
 };
 
 /// One flat Embree scene holding every object placed as at `frame`, for the benchmark that
