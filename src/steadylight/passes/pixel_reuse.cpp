@@ -71,7 +71,7 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
             if (changes.indirect[size_t(i)] || (trace.flags & (PixelTrace::gather | PixelTrace::coat)) ||
                 (chains && (changes.records_changed || changes.caustics_changed)))
                 changed |= indirect_term;
-            if ((trace.flags & PixelTrace::caustic) && changes.caustic[size_t(i)]) changed |= caustic_term;
+            if ((trace.flags & PixelTrace::reads_caustics) && changes.caustic[size_t(i)]) changed |= caustic_term;
             plan.changed[size_t(i)] = changed;
             // Looked up again where only corrected records changed for a pixel whose every look-up was kept.
             const bool look_up_again = changed == indirect_term && changes.indirect[size_t(i)] == FrameChanges::records &&

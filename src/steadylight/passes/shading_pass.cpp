@@ -109,7 +109,7 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (depth == 0 && pixel.kept) keep_look_up(pixel, bsdf, albedo_over_pi);
     // A diffuse point reads the caustic map, an empty one too: a frame's may not be empty.
-    if (pixel.trace) pixel.trace->flags |= PixelTrace::caustic;
+    if (pixel.trace) pixel.trace->flags |= PixelTrace::reads_caustics;
     if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
     const Stopwatch caustic_time;
     // A caustic estimate is reused by the pixel's other camera rays only where it is smoother than

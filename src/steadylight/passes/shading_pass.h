@@ -74,7 +74,7 @@ struct PixelTrace {
         chain = 1,       // some ray went on from a mirror, glass or glossy surface
         open_chain = 2,  // ...and left the scene
         coat = 4,        // a coat reflected photon-mapped light (read from the global photons)
-        caustic = 8,     // a diffuse point was shaded: it reads the caustic map
+        reads_caustics = 8,  // a diffuse point was shaded: it reads the caustic map (an empty one too)
         gather = 16,     // the method gathered anew (no cache record reached a point)
         unkept = 32,     // some camera ray's indirect light is not in the kept look-ups (KeptLookUps)
     };
