@@ -9,6 +9,7 @@
 #include "steadylight/passes/influence.h"
 #include "steadylight/passes/photon_gather.h"
 #include "steadylight/passes/pixel_reuse.h"
+#include "steadylight/passes/record_correction.h"
 #include "steadylight/photons/surface_coverage.h"
 
 namespace steadylight {
@@ -22,26 +23,6 @@ std::vector<uint8_t> caustic_changes(const Camera& camera, const FramePhotons::C
     if (!changes.everywhere)
         for (const Vec3 p : changes.points) mark_sphere_on_screen(camera, {p, estimate.max_radius * 1.001f}, mask);
     return mask;
-}
-
-/// The static records with the dynamic map's irradiance estimate added at each (paper §3.3, L_t).
-/// `changed`, when given, gets a flag per record: whether its irradiance changed.
-IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic, const DensitySettings& density,
-                                std::vector<uint8_t>* changed = nullptr) {
-    std::vector<IrradianceRecord> records = static_cache.records();
-    if (changed) changed->assign(records.size(), 0);
-    parallel_for_chunks(long(records.size()), 64, [&](long begin, long end) {
-        for (long i = begin; i < end; ++i) {
-            IrradianceRecord& r = records[size_t(i)];
-            const Rgb delta = dynamic.estimate_irradiance(r.p, r.n, density);
-            const Rgb E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g), std::max(0.0f, r.E.b + delta.b)};
-            if (changed) (*changed)[size_t(i)] = E != r.E;
-            r.E = E;
-        }
-    });
-    IrradianceCache corrected(static_cache.settings());
-    for (const IrradianceRecord& r : records) corrected.insert(r);
-    return corrected;
 }
 
 /// Marks the pixels whose indirect light a frame may change against the static frame: on the
@@ -163,7 +144,7 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         const StaticFrame& base = *reuse.base;
         const PixelLookUps& look_ups = base.look_ups[pixel];
         std::array<std::optional<Rgb>, PixelMemo::capacity> L_t;
-        Rgb indirect;
+        Rgb L_i;
         for (size_t ray = pixel * size_t(base.samples); ray < (pixel + 1) * size_t(base.samples); ++ray) {
             const uint8_t i = base.ray_look_up[ray];
             if (i == StaticFrame::no_look_up) continue;
@@ -171,9 +152,9 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
             // Covered, as in the static frame: the corrected records are the static ones, moved nowhere.
             if (!E) E = lighting.transported.interpolate(look_ups.p[i], look_ups.n[i]);
             if (!E) E = lighting.transported.interpolate(look_ups.p[i], look_ups.n[i], 2).value();
-            indirect += base.ray_albedo[ray] * *E;
+            L_i += base.ray_albedo[ray] * *E;
         }
-        sums.indirect = sums.extra[L_t_slot] = indirect;
+        sums.indirect = sums.extra[L_t_slot] = L_i;
     };
     ShadedFrame shaded = shade_frame(context, photon.shading, lighting.caustic, indirect, [&](const Ray& ray) {
         return gather_from_photons(context, lighting.irradiance, max_radius, reuse.visibility, ray).L;
@@ -192,7 +173,7 @@ StaticFrame make_static_frame(const FrameContext& context, const StaticSolution&
     const IrradiancePhotons irradiance(paths.global.photons, photon.irradiance_stride, photon.irradiance_estimate,
                                        surface_coverage(context, Visibility::static_only));
     // Built as every frame builds L_t, so that its interpolations are the frame's bit for bit.
-    const IrradianceCache transported = corrected_cache(solution.cache, PhotonMap{}, localized.correction_estimate);
+    const IrradianceCache transported = corrected_cache(solution.cache, PhotonMap{}, localized.correction, {});
     const IrradianceCache no_dynamic_cache(photon.cache);
     const InfluenceMap no_influence;
     StaticFrame out;
@@ -242,7 +223,9 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     std::vector<uint8_t> changed_records;
     const IrradianceCache corrected = timed_phase("L_t", stats.correction_s, [&] {
         return frozen ? IrradianceCache(photon.cache)
-                      : corrected_cache(static_cache, photons.dynamic, localized.correction_estimate, &changed_records);
+                      : corrected_cache(static_cache, photons.dynamic, localized.correction,
+                                        solution.correction_coverage->shares(context, static_cache, localized.correction),
+                                        &changed_records);
     });
     const IrradianceCache& transported = frozen ? static_cache : corrected;
 

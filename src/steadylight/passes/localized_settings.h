@@ -7,26 +7,37 @@
 
 #include <nlohmann/json.hpp>
 
-#include "steadylight/photons/photon_map.h"
-
 namespace steadylight {
+
+constexpr int max_correction_levels = 8;
+
+/// How L_t's correction reads the dynamic photons at a static record (record_correction.h): a
+/// kernel estimate at radii radius, 2 radius, ... (levels of them), each level's detail over the
+/// next coarser kept where it stands out of its own noise.
+struct CorrectionSettings {
+    float radius = 0.25f;        // the finest level's kernel radius, scene units
+    int levels = 4;              // radius x 1, 2, 4, 8 by default
+    float noise_sigmas = 3;      // a detail within this many standard errors of zero is noise: dropped
+    float signal_sigmas = 5;     // beyond this many it is kept whole; in between, in proportion
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CorrectionSettings, radius, levels, noise_sigmas, signal_sigmas)
 
 struct LocalizedSettings {
     int influence_photons = 300;  // N nearest dynamic photons in the influence estimate (paper: 300)
-    /// The dynamic map's estimate that corrects the static records (L_t). Many photons: a noisy
-    /// correction changes from frame to frame and flickers (k = 50 flickered more than the
-    /// photon method on TABLE; 300 flickers 25% less than it).
-    DensitySettings correction_estimate{.k = 300, .max_radius = 0.5f};
+    /// The dynamic map's estimate that corrects the static records (L_t). The paper's, 300
+    /// nearest photons, changed from frame to frame far from the moving objects and flickered
+    /// (docs/localized.md "A steady correction").
+    CorrectionSettings correction;
     int influence_step = 4;       // influence estimated at every n-th pixel centre in x and y (it is smooth)
     /// Thresholds on the influence relative to the static indirect irradiance there: below
     /// tau_lower L_t alone, above tau_upper L_y alone, smoothstep between (paper §3.3). Why these
-    /// values: L_t's correction is a density estimate of the dynamic photons, whose noise is about
-    /// I / sqrt(k) for k photons (k = 300): at I = 0.3 that is ~2% of the static indirect
+    /// values: a density estimate of the dynamic photons from k photons has a noise of about
+    /// I / sqrt(k) (the paper's k = 300): at I = 0.3 that is ~2% of the static indirect
     /// irradiance, at I = 1 ~6%, past which L_t cannot be trusted (docs/localized.md).
     float tau_lower = 0.3f;
     float tau_upper = 1.0f;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(LocalizedSettings, influence_photons, correction_estimate,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(LocalizedSettings, influence_photons, correction,
                                                 influence_step, tau_lower, tau_upper)
 
 /// Throws InputError naming `where` + "/<field>" for a value out of range, or when

@@ -68,11 +68,14 @@ TEST(PixelReuse, ScreenMarksHoldEveryPixelWhoseRaysPassThroughTheSphere) {
                     const Vec2 at = k < 4 ? Vec2{float(k & 1), float(k >> 1)} : rng.next_vec2();
                     const Ray ray = camera.generate_ray(float(x) + at.x, float(y) + at.y);
                     const float t = std::max(dot(sphere.center - ray.o, ray.d), 0.0f);
-                    if (length(ray.o + ray.d * t - sphere.center) <= sphere.radius)
+                    if (length(ray.o + ray.d * t - sphere.center) <= sphere.radius) {
                         ASSERT_TRUE(mask[size_t(y * 64 + x)]) << "trial " << trial << " pixel " << x << "," << y;
+                    }
                 }
             }
-        if (length(sphere.center - eye) > 2 * sphere.radius + 1) EXPECT_LT(marked, 64 * 48 / 2) << "trial " << trial;
+        if (length(sphere.center - eye) > 2 * sphere.radius + 1) {
+            EXPECT_LT(marked, 64 * 48 / 2) << "trial " << trial;
+        }
     }
 }
 
@@ -137,7 +140,9 @@ TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
         EXPECT_GT(r.pixels_reused + r.pixels_looked_up_again + r.pixels_redone_but_direct, 48 * 36 / 4) << what;
         EXPECT_EQ(r.pixels_reused + r.pixels_looked_up_again + r.pixels_redone_but_direct + r.pixels_redone, 48 * 36) << what;
         // Where only the corrected records change, most pixels need no ray at all.
-        if (GetParam() == "ball" || GetParam() == "table") EXPECT_GT(r.pixels_looked_up_again, 48 * 36 / 2) << what;
+        if (GetParam() == "ball" || GetParam() == "table") {
+            EXPECT_GT(r.pixels_looked_up_again, 48 * 36 / 2) << what;
+        }
         const FrameStats& w = whole.stats;
         EXPECT_EQ(w.pixels_reused + w.pixels_looked_up_again + w.pixels_redone_but_direct + w.pixels_redone, 0) << what;
     }
@@ -145,7 +150,7 @@ TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, PixelReuseOnScene,
                          ::testing::Values("ball", "table", "corridor", "glass_move", "mirror_room", "blender_glass"),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {
     const Scene scene(testing::two_rooms_one_moving_ball());

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "steadylight/passes/record_correction.h"
 #include "steadylight/passes/segment_pass.h"
 #include "steadylight/passes/shading_pass.h"
 #include "steadylight/photons/photon_paths.h"
@@ -25,6 +26,8 @@ struct StaticSolution {
     std::string file_note;  // why the file was not used, when it was not
     std::shared_ptr<const StaticPhotonPaths> photon_paths;  // null: frames trace all their photons
     std::shared_ptr<const StaticFrame> static_frame;        // null: frames shade every pixel
+    /// The records' disc shares for L_t's correction, made by the first frame that needs them.
+    std::shared_ptr<const CorrectionCoverage> correction_coverage = std::make_shared<CorrectionCoverage>();
 
     long records() const { return long(cache.records().size()); }
 };

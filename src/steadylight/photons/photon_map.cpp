@@ -24,10 +24,6 @@ std::vector<Vec3> positions_of(const std::vector<Photon>& photons, const std::ve
     return positions;
 }
 
-/// Photons arriving on the other side of a thin wall, or on a differently oriented surface
-/// nearby, do not count (Jensen 2001 §7.2: "the normal ... filter").
-bool same_side(const Photon& photon, Vec3 n) { return dot(photon.n, n) > 0.5f; }
-
 /// The squared radius of an estimate that found `neighbours`.
 float estimate_radius2(const std::vector<Neighbour>& neighbours, const DensitySettings& settings) {
     return int(neighbours.size()) < settings.k ? settings.max_radius * settings.max_radius
@@ -58,6 +54,13 @@ void PhotonMap::k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour
     if (!m_overlay) return m_index->k_nearest(p, k, max_radius * max_radius, out);
     PointIndex::k_nearest({m_index.get(), m_overlay->base_ids.data()}, {&m_overlay->added, m_overlay->added_ids.data()},
                           p, k, max_radius * max_radius, out);
+}
+
+void PhotonMap::within(Vec3 p, float radius, std::vector<Neighbour>& out) const {
+    if (!m_index) return out.clear();
+    if (!m_overlay) return m_index->within(p, radius * radius, out);
+    PointIndex::within({m_index.get(), m_overlay->base_ids.data()}, {&m_overlay->added, m_overlay->added_ids.data()}, p,
+                       radius * radius, out);
 }
 
 Rgb PhotonMap::estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius) const {

@@ -47,6 +47,8 @@ public:
 
     /// The k nearest photons to `p` within `max_radius`, nearest first.
     void k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out) const;
+    /// Every photon within `radius` of `p`, in an order that depends on the map and `p` alone.
+    void within(Vec3 p, float radius, std::vector<Neighbour>& out) const;
 
     /// Irradiance at p (normal n) from photons arriving on n's side: the power of the k - 1
     /// nearest / (pi r^2), r the distance to the k-th photon (or the maximum radius, and every

@@ -105,6 +105,25 @@ TEST(PhotonMap, ComposedMapAnswersAsAMapBuiltOverAllItsPhotons) {
             for (size_t i = 0; i < a.size(); ++i)
                 ASSERT_TRUE(a[i].index == b[i].index && a[i].distance2 == b[i].distance2) << "k " << k << ", " << i;
         }
+    // Every photon within a radius: the same set (in its own order), and exactly the photons a
+    // brute-force scan finds.
+    const auto sorted = [](std::vector<Neighbour> found) {
+        std::sort(found.begin(), found.end(), [](Neighbour x, Neighbour y) { return x.index < y.index; });
+        return found;
+    };
+    for (const Vec3& q : random_points(40, 8)) {
+        composed.within(q, 0.2f, a);
+        rebuilt.within(q, 0.2f, b);
+        a = sorted(a), b = sorted(b);
+        std::vector<Neighbour> expected;
+        for (uint32_t i = 0; i < photons.size(); ++i)
+            if (length2(photons[i].p - q) <= 0.2f * 0.2f) expected.push_back({i, length2(photons[i].p - q)});
+        ASSERT_EQ(a.size(), expected.size());
+        ASSERT_EQ(b.size(), expected.size());
+        for (size_t i = 0; i < a.size(); ++i)
+            ASSERT_TRUE(a[i].index == expected[i].index && b[i].index == expected[i].index &&
+                        a[i].distance2 == b[i].distance2);
+    }
 }
 
 // Photons of total power P spread uniformly over a unit square: irradiance P / 1 m^2, by both

@@ -94,6 +94,21 @@ private:
     bool m_found = false;
 };
 
+/// Every point within a fixed radius (PointIndex::within), in the order they are offered.
+class EveryWithin {
+public:
+    EveryWithin(std::vector<Neighbour>& out, float max_distance2) : m_out(out), m_radius2(max_distance2) {}
+
+    float radius2() const { return m_radius2; }
+    void offer(uint32_t index, float distance2) {
+        if (distance2 <= m_radius2) m_out.push_back({index, distance2});
+    }
+
+private:
+    std::vector<Neighbour>& m_out;
+    float m_radius2;
+};
+
 /// The ids of an index searched on its own: its points' own.
 struct OwnIds {
     static bool keeps(uint32_t) { return true; }
@@ -209,6 +224,27 @@ void PointIndex::search_all(Vec3 p, int k, float max_distance2, std::vector<Neig
     (search_part(heap, parts), ...);
     heap.sort();
     out.resize(size_t(heap.size()));
+}
+
+template <class... Parts>
+void PointIndex::search_within(Vec3 p, float max_distance2, std::vector<Neighbour>& out, Parts... parts) {
+    out.clear();
+    const float query[3] = {p.x, p.y, p.z};
+    EveryWithin collector(out, max_distance2);
+    const auto search_part = [&](const auto& part) {
+        const auto& [index, ids] = part;
+        if (!index->m_entries.empty())
+            index->search(0, uint32_t(index->m_entries.size()), query, CellDistance{}, collector, ids);
+    };
+    (search_part(parts), ...);
+}
+
+void PointIndex::within(Vec3 p, float max_distance2, std::vector<Neighbour>& out) const {
+    search_within(p, max_distance2, out, std::pair{this, OwnIds{}});
+}
+
+void PointIndex::within(Mapped a, Mapped b, Vec3 p, float max_distance2, std::vector<Neighbour>& out) {
+    search_within(p, max_distance2, out, std::pair{a.index, MappedIds{a.ids}}, std::pair{b.index, MappedIds{b.ids}});
 }
 
 void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {

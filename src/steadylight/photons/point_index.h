@@ -51,6 +51,12 @@ public:
     /// one index built over the union with those ids, since both order by distance, then id.
     static void k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out);
 
+    /// Every point within sqrt(max_distance2) of `p`, in the order the search meets them (the
+    /// same for every query of the same point and index).
+    void within(Vec3 p, float max_distance2, std::vector<Neighbour>& out) const;
+    /// within over the union of two mapped indexes.
+    static void within(Mapped a, Mapped b, Vec3 p, float max_distance2, std::vector<Neighbour>& out);
+
 private:
     /// A point and its index in the input, 16 bytes.
     struct Entry {
@@ -67,7 +73,10 @@ private:
     void build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper);
     template <class Heap, class Ids>
     void search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap, Ids ids) const;
-    /// Searches each of `parts` (index and ids) into one heap, then moves its result to `out`.
+    /// Searches each of `parts` (index and ids) into one heap, then moves its result to `out`;
+    /// search_within collects every point within the radius instead.
+    template <class... Parts>
+    static void search_within(Vec3 p, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
     template <class... Parts>
     static void search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
 

@@ -10,7 +10,7 @@ namespace steadylight {
 namespace {
 
 constexpr int rings = 2, directions = 8;
-constexpr float same_side_cosine = 0.5f;  // as the photons' normal filter (photon_map.cpp)
+constexpr float same_side_cosine = 0.5f;  // as the photons' normal filter (photon.h, same_side)
 
 /// Whether the surface met by `ray` (if any) faces `n`'s way, seen from the ray's side.
 bool meets_surface_facing(const FrameContext& context, const Ray& ray, Vec3 n, Visibility visibility) {

@@ -42,6 +42,9 @@ struct FramePair {
 struct TemporalNoise {
     double all = 0;  // over the pixels whose true change is below 20% of Y
     double far = 0;  // over the pixels whose reference changes by less than 0.2% in every pair
+    /// The mean signed (method - reference) change over the far pixels, / mean Y: a method that
+    /// holds still where the truth still moves a little shows it here.
+    double far_signed = 0;
     long all_pixels = 0, far_pixels = 0;  // pixels counted, summed over the pairs
 };
 

@@ -81,6 +81,8 @@ TEST(TemporalNoise, ChangeWhereTheLightIsStillIsNoiseAndCountsAsFar) {
     EXPECT_NEAR(noise.all, 0.08 / 16 / 0.5, 1e-6);
     EXPECT_NEAR(noise.far, noise.all, 1e-9);
     EXPECT_EQ(noise.far_pixels, 16);
+    EXPECT_NEAR(noise.far_signed, noise.far, 1e-9);  // it brightened
+    EXPECT_NEAR(temporal_noise({{flickering, still}}, {{still, still}}).far_signed, -noise.far, 1e-9);
 }
 
 TEST(TemporalNoise, LargeTrueChangesAreLeftOut) {
