@@ -5,8 +5,8 @@
 //   mean luminance (quality/image_error.h; emitters and their border left out), frame time.
 //   Per animated scene and method: temporal noise over the four common-random-numbers pairs,
 //   over all pixels whose true change is small and "far" (where the light does not change), the
-//   mean signed change against the reference's over the far pixels, and the references' own
-//   noise floor (the middle pair against the same pair with another seed).
+//   mean signed change against the reference's over the far pixels, the method's own mean change
+//   there (free of the references' noise), and the references' own noise floor (the middle pair against the same pair with another seed).
 // Frames whose reference is missing are skipped and said so. Prints, asserts nothing.
 // Run: build/quality_bench [--scenes table,corridor] [--methods photon,localized,frozen] [--pairs 0]
 #include <cstdio>
@@ -152,15 +152,15 @@ void print_temporal_noise(SceneRenderer& renderer, const std::string& name, cons
         std::vector<FramePair> pairs;
         for (size_t i = 0; i < images.size(); i += 2) pairs.push_back({images[i], images[i + 1]});
         const TemporalNoise noise = temporal_noise(pairs, reference_pairs, emitters);
-        std::printf("%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  (%ld / %ld pixels)\n", name.c_str(),
-                    std::string(method_info(method).name).c_str(), noise.all, noise.far, noise.far_signed, noise.all_pixels,
-                    noise.far_pixels);
+        std::printf("%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  far own %.5f  (%ld / %ld pixels)\n",
+                    name.c_str(), std::string(method_info(method).name).c_str(), noise.all, noise.far, noise.far_signed,
+                    noise.far_own, noise.all_pixels, noise.far_pixels);
     }
     const std::optional<Image> a = read_reference("crn_seed1", name, frames / 2), b = read_reference("crn_seed1", name, frames / 2 + 1);
     if (a && b) {
         const TemporalNoise floor = temporal_noise({{*a, *b}}, {reference_pairs[2]}, emitters);
-        std::printf("%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  (the references' own noise floor)\n",
-                    name.c_str(), "reference", floor.all, floor.far, floor.far_signed);
+        std::printf("%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  far own %.5f  (the references' own noise floor)\n",
+                    name.c_str(), "reference", floor.all, floor.far, floor.far_signed, floor.far_own);
     }
 }
 

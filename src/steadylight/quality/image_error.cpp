@@ -75,7 +75,7 @@ TemporalNoise temporal_noise(const std::vector<FramePair>& method, const std::ve
             const double ya = luminance(r.a.pixels[i]), yb = luminance(r.b.pixels[i]);
             if (!(std::abs(yb - ya) < no_change * 0.5 * (ya + yb))) far[i] = 0;
         }
-    double all_diff = 0, all_y = 0, far_diff = 0, far_signed = 0, far_y = 0;
+    double all_diff = 0, all_y = 0, far_diff = 0, far_signed = 0, far_own = 0, far_y = 0;
     TemporalNoise noise;
     for (size_t p = 0; p < method.size(); ++p)
         for (size_t i = 0; i < n; ++i) {
@@ -83,14 +83,15 @@ TemporalNoise temporal_noise(const std::vector<FramePair>& method, const std::ve
             const double ra = luminance(reference[p].a.pixels[i]), rb = luminance(reference[p].b.pixels[i]);
             const double change = rb - ra, y = 0.5 * (ra + rb);
             if (!(std::abs(change) < small_change * y)) continue;
-            const double signed_diff = (luminance(method[p].b.pixels[i]) - luminance(method[p].a.pixels[i])) - change;
-            const double diff = std::abs(signed_diff);
+            const double own = luminance(method[p].b.pixels[i]) - luminance(method[p].a.pixels[i]);
+            const double signed_diff = own - change, diff = std::abs(signed_diff);
             all_diff += diff, all_y += y, ++noise.all_pixels;
-            if (far[i]) far_diff += diff, far_signed += signed_diff, far_y += y, ++noise.far_pixels;
+            if (far[i]) far_diff += diff, far_signed += signed_diff, far_own += std::abs(own), far_y += y, ++noise.far_pixels;
         }
     noise.all = all_y > 0 ? all_diff / all_y : 0;
     noise.far = far_y > 0 ? far_diff / far_y : 0;
     noise.far_signed = far_y > 0 ? far_signed / far_y : 0;
+    noise.far_own = far_y > 0 ? far_own / far_y : 0;
     return noise;
 }
 

@@ -82,6 +82,7 @@ TEST(TemporalNoise, ChangeWhereTheLightIsStillIsNoiseAndCountsAsFar) {
     EXPECT_NEAR(noise.far, noise.all, 1e-9);
     EXPECT_EQ(noise.far_pixels, 16);
     EXPECT_NEAR(noise.far_signed, noise.far, 1e-9);  // it brightened
+    EXPECT_NEAR(noise.far_own, noise.far, 1e-9);     // the reference did not change
     EXPECT_NEAR(temporal_noise({{flickering, still}}, {{still, still}}).far_signed, -noise.far, 1e-9);
 }
 
