@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <initializer_list>
 #include <optional>
@@ -206,6 +207,49 @@ TEST(LightSet, LargeQuadLightIrradianceMatchesTheFormFactorOfARectangle) {
     const Lit lit(scene_with({ceiling_light(2, 1, {radiance, radiance, radiance})}));
     const double expected = pi * radiance * 4 * corner_form_factor(1, 1, 1);
     EXPECT_NEAR(irradiance(lit.lights, origin, {0, 0, 1}, 200'000), expected, 0.01 * expected);
+}
+
+// Close under a 2 x 2 panel, area samples land mostly where the panel is seen at a grazing angle
+// and far away; a rectangle is sampled by its solid angle instead (spherical_rectangle.h), so each
+// sample counts about the same. The same square made of four triangles (a fan about its centre)
+// is not a rectangle to the light and is sampled by area: both give the same irradiance, the
+// rectangle with a third of the spread or less.
+TEST(LightSet, RectangleSampledBySolidAngleIsLessNoisyCloseUnderIt) {
+    const float radiance = 2;
+    TriangleMesh fan;
+    fan.positions = {{0, 0, 1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+    fan.indices = {0, 2, 1, 0, 3, 2, 0, 4, 3, 0, 1, 4};  // facing down
+    const Lit rectangle(scene_with({ceiling_light(2, 1, {radiance, radiance, radiance})}));
+    const Lit triangles(scene_with({object(fan, {radiance, radiance, radiance})}));
+    const Vec3 ref{0.3f, -0.2f, 0.8f}, up{0, 0, 1};
+    const auto spread = [&](const LightSet& lights, double& mean) {
+        Pcg32 rng(12);
+        double sum = 0, sum2 = 0;
+        const int estimates = 400;
+        for (int e = 0; e < estimates; ++e) {
+            double estimate = 0;
+            for (int i = 0; i < 16; ++i) {  // 16 stratified samples
+                const Vec2 u{(float(i % 4) + rng.next_float()) / 4, (float(i / 4) + rng.next_float()) / 4};
+                if (const std::optional<LightSample> s = lights.sample_reusing(ref, u))
+                    estimate += luminance(s->Li) * std::max(0.0f, dot(s->wi, up)) / s->pdf / 16;
+            }
+            sum += estimate, sum2 += estimate * estimate;
+        }
+        mean = sum / estimates;
+        return std::sqrt(std::max(0.0, sum2 / estimates - mean * mean));
+    };
+    double mean_rectangle = 0, mean_triangles = 0;
+    const double spread_rectangle = spread(rectangle.lights, mean_rectangle);
+    const double spread_triangles = spread(triangles.lights, mean_triangles);
+    std::printf("irradiance %.4f / %.4f, spread of 16-sample estimates %.5f (rectangle) / %.5f (triangles)\n",
+                mean_rectangle, mean_triangles, spread_rectangle, spread_triangles);
+    // The panel splits into four rectangles with a corner straight above ref (0.2 below it).
+    const double expected = pi * radiance *
+                            (corner_form_factor(1.3, 0.8, 0.2) + corner_form_factor(1.3, 1.2, 0.2) +
+                             corner_form_factor(0.7, 0.8, 0.2) + corner_form_factor(0.7, 1.2, 0.2));
+    EXPECT_NEAR(mean_rectangle, expected, 0.01 * expected);
+    EXPECT_NEAR(mean_triangles, expected, 4 * spread_triangles / std::sqrt(400.0));
+    EXPECT_LT(spread_rectangle * 3, spread_triangles) << spread_rectangle << " vs " << spread_triangles;
 }
 
 TEST(LightSet, LightsAreChosenInProportionToTheirPower) {
