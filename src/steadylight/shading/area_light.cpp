@@ -1,7 +1,9 @@
 // Area lights: the surface of an emissive object, sampled uniformly by area (triangles chosen
-// in proportion to their area; spheres over their whole surface); a rectangle (two triangles) is
-// sampled by the solid angle it covers as seen from the point it lights (spherical_rectangle.h),
-// unless that is too small or too large for the parametrization's precision.
+// in proportion to their area; spheres over their whole surface) for photons. Seen from a point
+// they light, a rectangle (two triangles) is sampled by the solid angle it covers
+// (spherical_rectangle.h) unless that is too small to pay or too large for the
+// parametrization's precision, and a sphere by the cone of directions that see it (every
+// sample lands on its visible side, where area samples waste the hidden half and more).
 #include <algorithm>
 #include <cmath>
 
@@ -55,10 +57,15 @@ public:
         LightSample s;
         Rgb tint;
         const std::optional<SphericalRectangle> seen = seen_by_solid_angle(ref);
+        const std::optional<float> cone = cone_seen_from(ref);
         if (seen) {
             s.p = seen->sample(u);
             s.n = m_triangles[0].n;
             tint = tint_on_rectangle(s.p);
+        } else if (cone) {
+            s.p = sample_in_cone(ref, *cone, u);
+            s.n = normalize(s.p - m_center);
+            tint = {1, 1, 1};
         } else {
             tint = sample_point(u, s.p, s.n);
         }
@@ -67,13 +74,14 @@ public:
         if (!(s.distance > 0)) return std::nullopt;
         s.wi = d / s.distance;
         s.Li = emitted_radiance(m_object, m_Le * tint, s.n, -s.wi);
-        s.pdf = seen ? 1 / seen->solid_angle() : area_to_solid_angle(1 / m_area, ref, s.p, s.n);
+        s.pdf = seen ? 1 / seen->solid_angle() : cone ? uniform_cone_pdf(1 - *cone) : area_to_solid_angle(1 / m_area, ref, s.p, s.n);
         if (is_black(s.Li) || !(s.pdf > 0)) return std::nullopt;
         return s;
     }
 
     float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const override {
         if (const std::optional<SphericalRectangle> seen = seen_by_solid_angle(ref)) return 1 / seen->solid_angle();
+        if (const std::optional<float> cone = cone_seen_from(ref)) return uniform_cone_pdf(1 - *cone);
         return area_to_solid_angle(1 / m_area, ref, p, n);
     }
 
@@ -150,6 +158,30 @@ private:
             last_seen = seen.solid_angle() > 0.01f && seen.solid_angle() < 6.22f ? std::optional(seen) : std::nullopt;
         }
         return last_seen;
+    }
+
+    /// For a sphere seen from outside it, 1 - cos of the half-angle of the cone of directions
+    /// from `ref` that meet it (as sin^2 / (1 + cos): no cancellation for a small, far sphere).
+    std::optional<float> cone_seen_from(Vec3 ref) const {
+        if (!m_triangles.empty()) return std::nullopt;
+        const float distance2 = length2(m_center - ref), radius2 = m_radius * m_radius;
+        if (!(distance2 > radius2 * 1.0001f)) return std::nullopt;  // inside or on it: by area
+        const float sin2 = radius2 / distance2;
+        return sin2 / (1 + std::sqrt(1 - sin2));
+    }
+
+    /// The point of the sphere's near side in a direction uniform within that cone.
+    Vec3 sample_in_cone(Vec3 ref, float one_minus_cos_max, Vec2 u) const {
+        const Vec3 to_center = m_center - ref;
+        const float distance = length(to_center);
+        const float one_minus_cos = u.x * one_minus_cos_max;
+        const float cos_theta = 1 - one_minus_cos, sin2_theta = one_minus_cos * (2 - one_minus_cos);
+        const float sin_theta = std::sqrt(std::max(0.0f, sin2_theta)), phi = 2 * pi * u.y;
+        const Vec3 wi = Frame::from_normal(to_center / distance)
+                            .to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
+        // The nearer hit of ref + t wi: t = d cos - sqrt(R^2 - d^2 sin^2).
+        const float t = distance * cos_theta - std::sqrt(std::max(0.0f, m_radius * m_radius - distance * distance * sin2_theta));
+        return ref + wi * t;
     }
 
     /// The emissive texture's tint at a point of the rectangle (its triangle's barycentrics).
