@@ -145,16 +145,20 @@ private:
     /// The rectangle as seen from `ref`, when it is one and its solid angle is within what the
     /// parametrization samples precisely (a near-hemisphere one has a singular edge) and large
     /// enough to pay: a light seen under less than 0.01 sr (a 0.3 m panel from 3 m) is lit
-    /// about evenly by area samples too, which cost less. The last answer is kept per thread:
-    /// a shading point asks once per light sample, every time from the same point.
+    /// about evenly by area samples too, which cost less. The last answer is kept per thread,
+    /// keyed by the rectangle and the point (not by this light, whose address a later frame's
+    /// light may take): a shading point asks once per light sample, every time from the same point.
     std::optional<SphericalRectangle> seen_by_solid_angle(Vec3 ref) const {
         if (!m_rectangle) return std::nullopt;
-        thread_local const AreaLight* last_light = nullptr;
+        thread_local Rectangle last_rectangle{};
         thread_local Vec3 last_ref;
         thread_local std::optional<SphericalRectangle> last_seen;
-        if (last_light != this || !(last_ref == ref)) {
-            SphericalRectangle seen(*m_rectangle, ref);
-            last_light = this, last_ref = ref;
+        const Rectangle& r = *m_rectangle;
+        const bool same = last_ref == ref && last_rectangle.corner == r.corner && last_rectangle.edge_u == r.edge_u &&
+                          last_rectangle.edge_v == r.edge_v;
+        if (!same) {  // (at first the edges are zero, which a rectangle's never are)
+            const SphericalRectangle seen(r, ref);
+            last_rectangle = r, last_ref = ref;
             last_seen = seen.solid_angle() > 0.01f && seen.solid_angle() < 6.22f ? std::optional(seen) : std::nullopt;
         }
         return last_seen;
