@@ -36,21 +36,20 @@ constexpr SceneTolerance tolerances[] = {
     {"cornell", 0.06, 0.025},     {"ball", 0.06, 0.025},       {"table", 0.06, 0.025},
     {"corridor", 0.21, 0.04},     {"mirror_room", 0.30, 0.09}, {"flythrough", 0.06, 0.025},
     {"glass_move", 0.26, 0.06},   {"switch_room", 0.14, 0.035, 15},
-    // The photon methods are 2.3-2.6% too bright here (80x60). The precomputed irradiance at a
-    // photon counts the photon itself, which measures right where photons spread evenly
-    // (quasi-random paths: BALL, switch_room) and 1.3% high here, where they crowd more like
-    // random points (docs/truth-suite.md, "The photon density estimate"). Allowed 3%.
-    {"blender_room", 0.11, 0.04, 0, 0.03},
+    // Until the photons trapped in its closed lamp housings stopped leaking into the estimates
+    // beside them, the photon methods were 2.3-2.4% too bright here (docs/truth-suite.md, "Light
+    // trapped in lamp housings"); measured since: per pixel 0.031-0.033, blocks 0.013-0.015, mean
+    // within 0.5%. The mean within 1%, which the leak fails.
+    {"blender_room", 0.06, 0.025, 0, 0.01},
     // Textures, rough plastics, metals, a normal map and a cut-out screen (docs/materials.md).
-    // The photon methods are 7.1-8.2% too bright here (per pixel 0.15-0.16, blocks 0.10-0.11):
-    // blender_room's excess, about +2% from the coats (the cache keeps irradiance, not where it
-    // comes from, and a coat takes more of grazing light than of the average: docs/materials.md)
-    // and +0.6% from the normal map (indirect light ignores it); the gather on its own measured
-    // 12% high against path-traced irradiance at camera points, the coats' part.
-    // Allowed 9% until those are fixed (docs/truth-suite.md, "The textured Blender room").
-    {"blender_textured", 0.17, 0.12, 0, 0.09},
+    // Measured per pixel 0.105-0.106, blocks 0.043-0.045, mean 2.8-3.0% high: about 2% from the
+    // coats (the cache keeps irradiance, not where it comes from, and a coat takes more of grazing
+    // light than of the average: docs/materials.md) and 0.6% from the normal map (indirect light
+    // ignores it). The housing's leak made it 7-8% (blocks 0.10-0.11); allowed 4.5% until the
+    // coats' part is fixed (docs/truth-suite.md, "The textured Blender room").
+    {"blender_textured", 0.13, 0.06, 0, 0.045},
     // Rough glass and absorbing glass (KHR_materials_volume), made by Blender (docs/truth-suite.md):
-    // measured per pixel 0.066 (photon), 0.070 (localized); blocks 0.038, 0.043; mean within 1.2%.
+    // measured per pixel 0.070 (photon), 0.076 (localized); blocks 0.035, 0.044; mean within 1%.
     {"blender_glass", 0.10, 0.055},
 };
 

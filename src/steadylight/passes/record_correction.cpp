@@ -38,7 +38,7 @@ const std::vector<float>& CorrectionCoverage::shares(const FrameContext& context
                 for (int l = 0; l < levels; ++l) {
                     const size_t at = size_t(i) * size_t(levels) + size_t(l);
                     // A disc barely on the surface is held at 1/16, what one probe gives.
-                    m_shares[at] = std::max(coverage(records[size_t(i)].p, records[size_t(i)].n, level_radius(settings, l), at),
+                    m_shares[at] = std::max(coverage.probes(records[size_t(i)].p, records[size_t(i)].n, level_radius(settings, l), at).share(),
                                             1.0f / 16);
                 }
         });

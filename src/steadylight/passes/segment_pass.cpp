@@ -78,8 +78,9 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
     h.add(settings.photons.global_photons), h.add(settings.photons.max_bounces);
     h.add(settings.irradiance_estimate.k), h.add(settings.irradiance_estimate.max_radius), h.add(settings.irradiance_stride);
     // Raised whenever the estimate at the photons changes what it computes, so that cache files
-    // made by an older steadylight are not taken for this one's. 2: unbiased and boundary-corrected.
-    constexpr int photon_irradiance_revision = 2;
+    // made by an older steadylight are not taken for this one's. 2: unbiased and boundary-corrected;
+    // 3: photons the surface does not reach left out (lamp housings).
+    constexpr int photon_irradiance_revision = 3;
     h.add(photon_irradiance_revision);
     h.add(settings.gather.theta_strata), h.add(settings.gather.phi_strata), h.add(settings.gather.fixed_directions);
     h.add(settings.cache.accuracy), h.add(settings.cache.min_spacing_px), h.add(settings.cache.max_spacing_px);

@@ -76,6 +76,34 @@ Rgb PhotonMap::estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settin
     return sum / (pi * r2);
 }
 
+Rgb PhotonMap::estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySettings& settings, const SurfaceCoverage& coverage,
+                                              uint64_t seed, float* radius, DiscProbes* probes) const {
+    thread_local std::vector<Neighbour> neighbours;
+    k_nearest(p, settings.k, settings.max_radius, neighbours);
+    const float r2 = estimate_radius2(neighbours, settings), r = std::sqrt(r2);
+    if (radius) *radius = r;
+    if (probes) *probes = DiscProbes{};
+    if (neighbours.empty()) return {};
+    const DiscProbes disc = coverage.probes(p, n, r, seed);
+    if (probes) *probes = disc;
+    const bool whole = disc.share() == 1;
+    const Frame frame = Frame::from_normal(n);
+    const size_t inside = int(neighbours.size()) < settings.k ? neighbours.size() : neighbours.size() - 1;
+    Rgb sum;
+    for (size_t j = 0; j < inside; ++j) {
+        const Photon& photon = m_photons[neighbours[j].index];
+        if (!same_side(photon, n)) continue;
+        const Vec3 offset = photon.p - p;
+        bool untested = dot(offset, n) <= coverage_lift * r;
+        if (untested && !whole) {
+            const Vec3 local = frame.to_local(offset);
+            untested = disc.reached_cell(local.x, local.y, r2);
+        }
+        if (untested || coverage.reaches(p, n, r, photon.p)) sum += photon.power;
+    }
+    return sum / (pi * r2 * std::max(disc.share(), 1.0f / 16));
+}
+
 Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius) const {
     thread_local std::vector<Neighbour> neighbours;
     k_nearest(p, settings.k, settings.max_radius, neighbours);
@@ -101,25 +129,35 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
         m_n[i] = photons[i * m_stride].n;
     }
     m_E.resize(count);
+    m_radius.resize(count);
+    m_probes.resize(count);
     m_state = std::make_unique<std::atomic<uint8_t>[]>(count);  // value-initialised: all empty
     m_index = PointIndex(positions);
 }
 
-Rgb IrradiancePhotons::irradiance_at(uint32_t i) const {
+Rgb IrradiancePhotons::irradiance_at(uint32_t i, DiscProbes* probes, float* radius) const {
     enum : uint8_t { empty, writing, ready };
-    if (m_state[i].load(std::memory_order_acquire) == ready) return m_E[i];
+    if (m_state[i].load(std::memory_order_acquire) == ready) {
+        if (probes) *probes = m_probes[i];
+        if (radius) *radius = m_radius[i];
+        return m_E[i];
+    }
     // A pure function of the map: whichever thread computes it first, the value is the same.
     const Photon& photon = m_global->photons()[i * m_stride];
-    float radius = 0;
-    Rgb E = m_global->estimate_irradiance(photon.p, photon.n, m_settings, &radius);
-    // A disc barely on the surface (a thin leg's edge) is held at 1/16, what one probe gives.
-    if (m_coverage) E = E / std::max(m_coverage(photon.p, photon.n, radius, i), 1.0f / 16);
+    float r = 0;
+    DiscProbes disc;
+    const Rgb E = m_coverage ? m_global->estimate_irradiance_on_surface(photon.p, photon.n, m_settings, m_coverage, i, &r, &disc)
+                             : m_global->estimate_irradiance(photon.p, photon.n, m_settings, &r);
     uint8_t expected = empty;
     if (m_state[i].compare_exchange_strong(expected, writing, std::memory_order_acquire)) {
         m_E[i] = E;
+        m_radius[i] = r;
+        m_probes[i] = disc;
         m_state[i].store(ready, std::memory_order_release);
         m_computed.fetch_add(1, std::memory_order_relaxed);
     }
+    if (probes) *probes = disc;
+    if (radius) *radius = r;
     return E;
 }
 
@@ -135,8 +173,23 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
     thread_local std::vector<Neighbour> neighbours;
     for (const int k : {1, 8}) {
         m_index.k_nearest(p, k, max_radius * max_radius, neighbours);
-        for (const Neighbour& nb : neighbours)
-            if (dot(m_n[nb.index], n) > 0.5f) return irradiance_at(nb.index);
+        for (const Neighbour& nb : neighbours) {
+            if (!(dot(m_n[nb.index], n) > 0.5f)) continue;
+            DiscProbes disc;
+            float radius = 0;
+            const Rgb E = irradiance_at(nb.index, &disc, &radius);
+            if (!m_coverage) return E;
+            // Untested when p lies on the photon's surface as its own estimate saw it: within
+            // its disc, in a cell its surface reaches, and not behind p's plane.
+            const Photon& photon = m_global->photons()[nb.index * m_stride];
+            const float distance = std::sqrt(nb.distance2);
+            bool untested = nb.distance2 < radius * radius && dot(photon.p - p, n) <= coverage_lift * distance;
+            if (untested && disc.share() < 1) {
+                const Vec3 local = Frame::from_normal(photon.n).to_local(p - photon.p);
+                untested = disc.reached_cell(local.x, local.y, radius * radius);
+            }
+            if (untested || m_coverage.reaches(p, n, distance, photon.p)) return E;
+        }
         if (int(neighbours.size()) < k) break;  // nothing further within reach
     }
     return std::nullopt;

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <atomic>
+#include <bit>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -24,9 +26,43 @@ struct DensitySettings {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(DensitySettings, k, max_radius)
 void validate(const DensitySettings& settings, const std::string& where);
 
-/// The share of the disc of radius `radius` around `p`, in the plane of normal `n`, that lies on
-/// surfaces facing n's way (surface_coverage.h), in [0, 1]; `seed` varies how it is sampled.
-using SurfaceCoverage = std::function<float(Vec3 p, Vec3 n, float radius, uint64_t seed)>;
+/// How far off the surface, over a disc's radius, the probes of its coverage start (surface_coverage.h).
+constexpr float coverage_lift = 0.02f;
+
+/// Which cells of a density estimate's disc the surface under its centre reaches, one probe per
+/// cell (surface_coverage.h): two rings of equal area, eight sectors each, in the disc's frame
+/// (Frame::from_normal of its normal), the sectors turned by `turn` (in sectors) and the outer
+/// ring's by half a sector more. Sector j of a ring is centred on its probe's angle.
+struct DiscProbes {
+    static constexpr int rings = 2, sectors = 8;
+    uint16_t reached = 0xffff;  // bit ring * sectors + sector
+    float turn = 0;
+
+    float share() const { return float(std::popcount(reached)) / (rings * sectors); }
+    /// Whether the probe of the cell holding the disc's point (x, y), in its frame, reached it;
+    /// `radius2` is the disc's squared radius.
+    bool reached_cell(float x, float y, float radius2) const {
+        const int ring = x * x + y * y < radius2 / rings ? 0 : 1;
+        const float at = std::atan2(y, x) * (sectors / (2 * pi)) - turn - 0.5f * float(ring);
+        const int sector = ((int(std::floor(at + 0.5f)) % sectors) + sectors) % sectors;
+        return (reached >> (ring * sectors + sector)) & 1;
+    }
+};
+
+/// How a density estimate's disc lies on the surface under its centre (surface_coverage.h).
+struct SurfaceCoverage {
+    /// The probes of the disc of radius `radius` around `p`, in the plane of normal `n`: which
+    /// of its cells the surface under p reaches; `seed` varies where they probe.
+    std::function<DiscProbes(Vec3 p, Vec3 n, float radius, uint64_t seed)> probes;
+    /// Whether the surface under p reaches q (taken onto the disc's plane, or, in front of it,
+    /// seen from the centre), `radius` being the disc's: a photon there lies on the surface the
+    /// estimate is for, not behind a wall that rises from it (the inside of a lamp's closed
+    /// housing against a wall) or on another surface just in front of it (a housing's top hung
+    /// under the ceiling).
+    std::function<bool(Vec3 p, Vec3 n, float radius, Vec3 q)> reaches;
+
+    explicit operator bool() const { return bool(probes); }
+};
 
 class PhotonMap {
 public:
@@ -63,6 +99,14 @@ public:
     /// `radius`, when given, receives the estimate's radius.
     Rgb estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius = nullptr) const;
 
+    /// The estimate_irradiance of photons on the surface under p, over the share of its disc
+    /// that `coverage` finds the surface reaches (held at 1/16 and above, what one probe gives):
+    /// photons in cells whose probe missed the surface, or in front of the disc's plane beyond
+    /// the probes' lift, count only if the surface reaches them. `radius` receives the estimate's radius,
+    /// `probes` the disc's probes.
+    Rgb estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySettings& settings, const SurfaceCoverage& coverage,
+                                       uint64_t seed, float* radius = nullptr, DiscProbes* probes = nullptr) const;
+
     /// Photons indexed on their own (not composed over another map's index).
     size_t indexed_here() const;
 
@@ -98,7 +142,10 @@ public:
     IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings, SurfaceCoverage coverage);
 
     /// The irradiance of the nearest precomputed photon whose normal agrees with n, if any
-    /// lies within `max_radius`.
+    /// lies within `max_radius`. One further from p than its own estimate's radius, in a cell
+    /// of its estimate's disc that the surface did not reach, or behind p's plane, counts only if
+    /// the surface at p reaches it (`coverage`): near a lamp's closed housing against a wall the
+    /// nearest is often inside, where the light trapped in the housing is bright.
     std::optional<Rgb> lookup(Vec3 p, Vec3 n, float max_radius) const;
     /// Computes every value now, in parallel: faster than on demand when gathers will cover the
     /// whole scene anyway (the photon method, the static pass), since photons are visited in order.
@@ -108,7 +155,9 @@ public:
     long computed() const { return m_computed.load(); }
 
 private:
-    Rgb irradiance_at(uint32_t i) const;
+    /// Value i; with `probes`, its estimate's disc's (whose radius is max_radius when fewer
+    /// photons were found).
+    Rgb irradiance_at(uint32_t i, DiscProbes* probes = nullptr, float* radius = nullptr) const;
 
     const PhotonMap* m_global;
     size_t m_stride;
@@ -116,6 +165,8 @@ private:
     SurfaceCoverage m_coverage;
     std::vector<Vec3> m_n;
     mutable std::vector<Rgb> m_E;
+    mutable std::vector<float> m_radius;      // per value: its estimate's radius
+    mutable std::vector<DiscProbes> m_probes;  // and its disc's probes
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;  // per value: empty, being written, ready
     mutable std::atomic<long> m_computed = 0;
     PointIndex m_index;

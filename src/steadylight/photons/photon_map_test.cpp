@@ -162,9 +162,62 @@ TEST(PhotonMap, IrradiancePhotonsDivideByTheSurfacesShareOfTheDisc) {
     const PhotonMap map = halton_floor_photons(1000, {1e-3f, 0, 0});
     const DensitySettings settings{.k = 50, .max_radius = 0.5f};
     const IrradiancePhotons whole(map, 1, settings, {});
-    const IrradiancePhotons half(map, 1, settings, [](Vec3, Vec3, float, uint64_t) { return 0.5f; });
+    const auto half_disc = [](Vec3, Vec3, float, uint64_t) { return DiscProbes{.reached = 0x0f0f}; };
+    const IrradiancePhotons half(map, 1, settings, {half_disc, [](Vec3, Vec3, float, Vec3) { return true; }});
     const Vec3 p = map.photons()[500].p;
     EXPECT_FLOAT_EQ(half.lookup(p, {0, 1, 0}, 0.1f)->r, 2 * whole.lookup(p, {0, 1, 0}, 0.1f)->r);
+}
+
+// Photons the surface does not reach (behind a wall rising from it: the inside of a lamp's
+// housing) do not count. Here the probes find half of every disc's cells on the surface (turned
+// from estimate to estimate), the photons lie evenly over the floor, and a photon elsewhere is
+// not reached: the estimate over that half alone is the whole one's. Counting every photon over
+// half the disc doubled it (the light that leaked out of lamp housings).
+TEST(PhotonMap, OnlyThePhotonsTheSurfaceReachesCount) {
+    const PhotonMap map = halton_floor_photons(20000, {1e-3f, 0, 0});
+    const DensitySettings settings{.k = 50, .max_radius = 0.5f};
+    const Vec3 up{0, 1, 0};
+    const Frame frame = Frame::from_normal(up);
+    Pcg32 rng(3);
+    double whole = 0, half = 0, leaking = 0;
+    for (int i = 0; i < 400; ++i) {
+        const Vec3 p{0.2f + 0.6f * rng.next_float(), 0, 0.2f + 0.6f * rng.next_float()};
+        const DiscProbes probes{.reached = 0x0f0f, .turn = rng.next_float()};
+        const auto half_disc = [&](Vec3, Vec3, float, uint64_t) { return probes; };
+        const SurfaceCoverage one_half{half_disc, [&](Vec3 c, Vec3, float radius, Vec3 q) {
+                                           const Vec3 local = frame.to_local(q - c);
+                                           return probes.reached_cell(local.x, local.y, radius * radius);
+                                       }};
+        const SurfaceCoverage every_photon{half_disc, [](Vec3, Vec3, float, Vec3) { return true; }};
+        whole += map.estimate_irradiance(p, up, settings).r;
+        half += map.estimate_irradiance_on_surface(p, up, settings, one_half, uint64_t(i)).r;
+        leaking += map.estimate_irradiance_on_surface(p, up, settings, every_photon, uint64_t(i)).r;
+    }
+    EXPECT_NEAR(half / whole, 1.0, 0.03);
+    EXPECT_NEAR(leaking / whole, 2.0, 1e-4);
+}
+
+// A disc's cells as its probes lay them out: the inner ring within the half-area radius, sectors
+// centred on the probes' angles, the outer ring turned by half a sector more.
+TEST(PhotonMap, DiscProbeCellsFollowTheProbesLayout) {
+    const DiscProbes only_first_inner{.reached = 0x0001, .turn = 0.25f};
+    const float r2 = 1;
+    const auto at = [](float radius, float sectors) {
+        const float angle = 2 * pi * sectors / DiscProbes::sectors;
+        return std::pair{radius * std::cos(angle), radius * std::sin(angle)};
+    };
+    for (const float offset : {-0.45f, 0.0f, 0.45f}) {
+        const auto [x, y] = at(0.5f, 0.25f + offset);
+        EXPECT_TRUE(only_first_inner.reached_cell(x, y, r2)) << offset;
+    }
+    const auto [x1, y1] = at(0.5f, 0.25f + 0.55f);  // the next sector
+    EXPECT_FALSE(only_first_inner.reached_cell(x1, y1, r2));
+    const auto [x2, y2] = at(0.9f, 0.25f);  // the outer ring
+    EXPECT_FALSE(only_first_inner.reached_cell(x2, y2, r2));
+    const DiscProbes only_first_outer{.reached = 0x0100, .turn = 0.25f};
+    const auto [x3, y3] = at(0.9f, 0.75f);  // its probe's angle: half a sector on
+    EXPECT_TRUE(only_first_outer.reached_cell(x3, y3, r2));
+    EXPECT_FLOAT_EQ(DiscProbes{.reached = 0x0f0f}.share(), 0.5f);
 }
 
 TEST(PhotonMap, IrradiancePhotonLookupRespectsNormals) {

@@ -9,7 +9,6 @@
 namespace steadylight {
 namespace {
 
-constexpr int rings = 2, directions = 8;
 constexpr float same_side_cosine = 0.5f;  // as the photons' normal filter (photon.h, same_side)
 
 /// Whether the surface met by `ray` (if any) faces `n`'s way, seen from the ray's side.
@@ -33,28 +32,47 @@ bool covers(const FrameContext& context, Visibility visibility, Vec3 p, Vec3 n, 
     return context.tracer.occluded({q + n * lift, -n, lift + reach}, visibility);
 }
 
+/// How far off the surface the probes start: a little of the disc, well above the ray epsilon.
+float lift_for(Vec3 p, float radius) { return std::max(coverage_lift * radius, 10 * ray_epsilon(p)); }
+
 }  // namespace
 
 SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibility) {
-    return [&context, visibility](Vec3 p, Vec3 n, float radius, uint64_t seed) {
+    SurfaceCoverage coverage;
+    coverage.probes = [&context, visibility](Vec3 p, Vec3 n, float radius, uint64_t seed) {
         const Frame frame = Frame::from_normal(n);
-        // Lifted off the surface by a little of the disc, well above the ray epsilon.
-        const float lift = std::max(0.02f * radius, 10 * ray_epsilon(p));
+        const float lift = lift_for(p, radius);
         const uint64_t bits = hash_ids(seed);
-        const float turn = float(bits & 0xffffff) * 0x1p-24f, jitter = float((bits >> 24) & 0xffffff) * 0x1p-24f;
-        int covered = 0;
-        for (int ring = 0; ring < rings; ++ring) {
+        DiscProbes probes;
+        probes.reached = 0;
+        probes.turn = float(bits & 0xffffff) * 0x1p-24f;
+        const float jitter = float((bits >> 24) & 0xffffff) * 0x1p-24f;
+        for (int ring = 0; ring < DiscProbes::rings; ++ring) {
             // Each ring holds an equal share of the disc's area; the point sits at a jittered
             // area fraction within its share.
-            const float r = radius * std::sqrt((float(ring) + jitter) / rings);
-            for (int j = 0; j < directions; ++j) {
-                const float phi = 2 * pi * (float(j) + turn + 0.5f * float(ring)) / directions;
+            const float r = radius * std::sqrt((float(ring) + jitter) / DiscProbes::rings);
+            for (int j = 0; j < DiscProbes::sectors; ++j) {
+                const float phi = 2 * pi * (float(j) + probes.turn + 0.5f * float(ring)) / DiscProbes::sectors;
                 const Vec3 q = p + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0});
-                covered += covers(context, visibility, p, n, q, lift, radius);
+                if (covers(context, visibility, p, n, q, lift, radius))
+                    probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
             }
         }
-        return float(covered) / (rings * directions);
+        return probes;
     };
+    coverage.reaches = [&context, visibility](Vec3 p, Vec3 n, float radius, Vec3 q) {
+        const float lift = lift_for(p, radius), height = dot(q - p, n);
+        // In front of the disc's plane (another surface a little off it, such as a lamp's
+        // housing hung just under the ceiling, or a concave one curving up): seen from the centre
+        // along a path that keeps in front of both, or not on this surface.
+        if (height > lift) {
+            const Vec3 along = q - p;
+            const float distance = length(along);
+            return !context.tracer.occluded({p + n * lift, along / distance, distance}, visibility);
+        }
+        return covers(context, visibility, p, n, q - n * height, lift, radius);
+    };
+    return coverage;
 }
 
 }  // namespace steadylight

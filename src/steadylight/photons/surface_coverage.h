@@ -14,6 +14,12 @@
 // curves up), and a ray down from it meets, within the disc's radius, a surface facing the
 // centre's way (where it curves down, a sphere). What the photons' normal filter counts (normals
 // within 60 degrees) is what the probes count.
+//
+// The same test tells whether a photon lies on the surface the estimate is for (`reaches`):
+// photons in the cells whose probe missed, and photons in front of the disc's plane (checked by a
+// ray from the lifted centre), count only if it passes. Without it the light trapped inside a
+// lamp's closed housing against a wall, or hung just under the ceiling, leaked into the
+// estimates beside it (docs/truth-suite.md, "Light trapped in lamp housings").
 #pragma once
 
 #include "steadylight/photons/photon_map.h"
