@@ -180,7 +180,7 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
             const Rgb E = irradiance_at(nb.index, &disc, &radius);
             if (!m_coverage) return E;
             // Untested when p lies on the photon's surface as its own estimate saw it: within
-            // its disc, in a cell its surface reaches, and not behind p's plane.
+            // its disc, in a cell its surface reaches, and the photon not in front of p's plane.
             const Photon& photon = m_global->photons()[nb.index * m_stride];
             const float distance = std::sqrt(nb.distance2);
             bool untested = nb.distance2 < radius * radius && dot(photon.p - p, n) <= coverage_lift * distance;

@@ -143,9 +143,9 @@ public:
 
     /// The irradiance of the nearest precomputed photon whose normal agrees with n, if any
     /// lies within `max_radius`. One further from p than its own estimate's radius, in a cell
-    /// of its estimate's disc that the surface did not reach, or behind p's plane, counts only if
-    /// the surface at p reaches it (`coverage`): near a lamp's closed housing against a wall the
-    /// nearest is often inside, where the light trapped in the housing is bright.
+    /// of its estimate's disc that the surface did not reach, or in front of p's plane, counts
+    /// only if the surface at p reaches it (`coverage`): near a lamp's closed housing against a
+    /// wall the nearest is often inside, where the light trapped in the housing is bright.
     std::optional<Rgb> lookup(Vec3 p, Vec3 n, float max_radius) const;
     /// Computes every value now, in parallel: faster than on demand when gathers will cover the
     /// whole scene anyway (the photon method, the static pass), since photons are visited in order.

@@ -50,5 +50,19 @@ TEST(SurfaceCoverage, CountsTheShareOfTheDiscOnTheSurface) {
     EXPECT_NEAR(mean_coverage(coverage, {1.499f, 0, 2}, up), 0.5, 0.03);  // at the cube's foot
 }
 
+// Whether a photon lies on the surface an estimate is for: the floor reaches its own points, but
+// not the floor under the cube behind the cube's side, nor the cube's top, in front of the
+// floor's plane (a lamp housing's top hung just under a ceiling is the same case).
+TEST(SurfaceCoverage, ReachesOnlyPointsOfItsOwnSurface) {
+    const Scene scene(floor_wall_cube_ball());
+    const PreparedFrame prepared(scene, 0);
+    const SurfaceCoverage coverage = surface_coverage(prepared.context(), Visibility::everything);
+    const Vec3 up{0, 1, 0};
+    EXPECT_TRUE(coverage.reaches({1, 0, 1}, up, 0.2f, {1.1f, 0, 1.05f}));
+    EXPECT_TRUE(coverage.reaches({1.4f, 0, 2}, up, 0.5f, {1.1f, 0, 2}));
+    EXPECT_FALSE(coverage.reaches({1.4f, 0, 2}, up, 0.5f, {1.7f, 0, 2}));  // under the cube
+    EXPECT_FALSE(coverage.reaches({1.4f, 0, 2}, up, 2.0f, {2, 1, 2}));     // the cube's top
+}
+
 }  // namespace
 }  // namespace steadylight
