@@ -1,30 +1,19 @@
 // GGX and its albedo tables (microfacet.h).
 #include "steadylight/shading/microfacet.h"
 
-#include <array>
+#include <algorithm>
 #include <cmath>
+
+#include "steadylight/shading/albedo_table.h"
 
 namespace steadylight {
 namespace {
 
-constexpr int table_mu = 64;         // cos theta from 0 to 1, spaced as its square root (finer at grazing)
-constexpr int table_roughness = 32;  // roughness from 0 to 1
-constexpr int table_strata = 32;     // per axis: 1024 samples per entry
-
-struct AlbedoTables {
-    std::array<std::array<GgxAlbedo, table_mu>, table_roughness> e{};
-    std::array<GgxAlbedo, table_roughness> average{};
-};
-
-float mu_of(int i) {
-    const float x = float(i) / float(table_mu - 1);
-    return std::max(x * x, 1e-4f);
-}
-float roughness_of(int j) { return std::max(float(j) / float(table_roughness - 1), min_pbr_roughness); }
+constexpr int table_strata = 32;  // per axis: 1024 samples per entry
 
 /// Integrates the single-scattering albedo by sampling visible normals: each sample weighs
-/// f cos / pdf = G2 / G1(wo), times the Fresnel term.
-GgxAlbedo integrate_albedo(float mu, float roughness) {
+/// f cos / pdf = G2 / G1(wo), times the Fresnel term: 1, and Schlick's (1 - wo.h)^5.
+AlbedoTable::Channels integrate_albedo(float mu, float roughness) {
     const Ggx ggx(roughness * roughness);
     const Vec3 wo{std::sqrt(std::max(0.0f, 1 - mu * mu)), 0, mu};
     double e = 0, es = 0;
@@ -42,49 +31,9 @@ GgxAlbedo integrate_albedo(float mu, float roughness) {
     return {float(e / n), float(es / n)};
 }
 
-/// Linear interpolation in a row of the table.
-GgxAlbedo lookup_row(const std::array<GgxAlbedo, table_mu>& row, float mu) {
-    const float x = std::sqrt(std::clamp(mu, 0.0f, 1.0f)) * float(table_mu - 1);
-    const int i = std::min(int(x), table_mu - 2);
-    const float t = x - float(i);
-    return {row[size_t(i)].e * (1 - t) + row[size_t(i) + 1].e * t,
-            row[size_t(i)].e_schlick * (1 - t) + row[size_t(i) + 1].e_schlick * t};
-}
-
-AlbedoTables build_tables() {
-    AlbedoTables tables;
-    for (int j = 0; j < table_roughness; ++j) {
-        auto& row = tables.e[size_t(j)];
-        for (int i = 0; i < table_mu; ++i) row[size_t(i)] = integrate_albedo(mu_of(i), roughness_of(j));
-        // The averages integrate the interpolated row itself, so that the compensation lobes
-        // (which use both) integrate to exactly what they should.
-        constexpr int steps = 1024;
-        double e = 0, es = 0;
-        for (int k = 0; k < steps; ++k) {
-            const float mu = (float(k) + 0.5f) / steps;
-            const GgxAlbedo a = lookup_row(row, mu);
-            e += 2.0 * a.e * mu / steps;
-            es += 2.0 * a.e_schlick * mu / steps;
-        }
-        tables.average[size_t(j)] = {float(e), float(es)};
-    }
-    return tables;
-}
-
-const AlbedoTables& tables() {
-    static const AlbedoTables t = build_tables();
+const AlbedoTable& table() {
+    static const AlbedoTable t(64, 32, min_pbr_roughness, integrate_albedo);
     return t;
-}
-
-/// The roughness row below `roughness` and the weight of the row above.
-std::pair<int, float> roughness_cell(float roughness) {
-    const float y = std::clamp(roughness, 0.0f, 1.0f) * float(table_roughness - 1);
-    const int j = std::min(int(y), table_roughness - 2);
-    return {j, y - float(j)};
-}
-
-GgxAlbedo mix(GgxAlbedo a, GgxAlbedo b, float t) {
-    return {a.e * (1 - t) + b.e * t, a.e_schlick * (1 - t) + b.e_schlick * t};
 }
 
 }  // namespace
@@ -125,13 +74,13 @@ float Ggx::pdf_reflection(Vec3 wo, Vec3 wi) const {
 }
 
 GgxAlbedo ggx_albedo(float cos_theta, float roughness) {
-    const auto [j, t] = roughness_cell(roughness);
-    return mix(lookup_row(tables().e[size_t(j)], cos_theta), lookup_row(tables().e[size_t(j) + 1], cos_theta), t);
+    const AlbedoTable::Channels e = table().at(cos_theta, roughness);
+    return {e[0], e[1]};
 }
 
 GgxAlbedo ggx_average_albedo(float roughness) {
-    const auto [j, t] = roughness_cell(roughness);
-    return mix(tables().average[size_t(j)], tables().average[size_t(j) + 1], t);
+    const AlbedoTable::Channels e = table().average(roughness);
+    return {e[0], e[1]};
 }
 
 }  // namespace steadylight

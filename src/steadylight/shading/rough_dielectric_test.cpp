@@ -19,30 +19,34 @@ constexpr float roughnesses[] = {0.03f, 0.1f, 0.2f, 0.3f, 0.5f, 0.7f, 1.0f};
 constexpr float cos_thetas[] = {0.05f, 0.2f, 0.5f, 0.8f, 1.0f};
 
 /// Reflected plus transmitted albedo, with importance transport: energy, without radiance's
-/// (eta_o / eta_i)^2 for a change of medium.
-double albedo(const Bsdf& bsdf, Vec3 wo) { return testing::directional_albedo(bsdf, wo, TransportMode::importance).g; }
+/// (eta_o / eta_i)^2 for a change of medium. 320 x 320 samples: with fewer the estimate's own
+/// noise at grazing angles from inside comes near 1%.
+double albedo(const Bsdf& bsdf, Vec3 wo) {
+    return testing::directional_albedo(bsdf, wo, TransportMode::importance, 320).g;
+}
 
-/// The single-scattering energy that GGX loses, which nothing puts back (no multiple-scattering
-/// compensation for glass): measured from both sides and printed, never a gain, and held within
-/// the bounds docs/materials.md states.
-TEST(RoughDielectric, WhiteFurnaceLosesOnlyWhatSingleScatteringLoses) {
+/// The white furnace: glass that absorbs nothing sends on all the energy that reaches it,
+/// reflected plus transmitted, from outside and from inside, at every roughness and angle (the
+/// multiple-scattering lobe puts back what single scattering loses).
+TEST(RoughDielectric, WhiteFurnaceHoldsFromBothSides) {
     for (const float roughness : roughnesses) {
         const auto bsdf = make_rough_dielectric(ior, roughness, {1, 1, 1});
-        double worst = 0, mean = 0;
+        double worst = 0;
         for (const float side : {1.0f, -1.0f})
             for (const float cos_theta : cos_thetas) {
-                const double loss = 1 - albedo(*bsdf, direction(side * cos_theta, 0.3f));
-                EXPECT_GT(loss, -0.01) << "roughness " << roughness << ", cos theta " << side * cos_theta;
-                worst = std::max(worst, loss);
-                mean += loss / (2 * std::size(cos_thetas));
+                const double error = albedo(*bsdf, direction(side * cos_theta, 0.3f)) - 1;
+                EXPECT_LT(std::abs(error), 0.01) << "roughness " << roughness << ", cos theta " << side * cos_theta;
+                if (std::abs(error) > std::abs(worst)) worst = error;
             }
-        std::printf("rough glass, roughness %.2f: energy lost mean %.4f, largest %.4f\n", roughness, mean, worst);
-        // Measured: mean (largest, at grazing) 0.5% (2.4%) at roughness 0.1, 3.9% (12%) at 0.3,
-        // 9.4% (21%) at 0.5, 19% (34%) at 0.7, 36% (58%) at 1: GGX's single-scattering loss.
-        const double bound = roughness <= 0.1f ? 0.03 : roughness <= 0.3f ? 0.13 : roughness <= 0.5f ? 0.23
-                           : roughness <= 0.7f ? 0.37 : 0.62;
-        EXPECT_LT(worst, bound) << "roughness " << roughness;
+        std::printf("rough glass, roughness %.2f: largest albedo error %+.4f\n", roughness, worst);
     }
+}
+
+// An index below 1 (a bubble of air in water) makes the outside the denser side.
+TEST(RoughDielectric, WhiteFurnaceHoldsForAnIndexBelowOne) {
+    const auto bsdf = make_rough_dielectric(1 / 1.33f, 0.6f, {1, 1, 1});
+    for (const float cos_theta : {0.1f, 0.5f, 0.9f, -0.1f, -0.5f, -0.9f})
+        EXPECT_NEAR(albedo(*bsdf, direction(cos_theta, 1.1f)), 1, 0.01) << "cos theta " << cos_theta;
 }
 
 // Radiance's generalised reciprocity (Veach 1997, eq. 5.14): f(wo, wi) / eta_o^2 = f(wi, wo) / eta_i^2,
