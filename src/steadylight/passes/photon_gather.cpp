@@ -1,6 +1,7 @@
 #include "steadylight/passes/photon_gather.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "steadylight/base/rng.h"
 #include "steadylight/shading/surface_point.h"
@@ -29,7 +30,11 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         const SurfaceBsdf surface_bsdf = bsdf_at(context, surface);
         const Bsdf* bsdf = &*surface_bsdf;
         std::unique_ptr<Bsdf> coat;
-        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(surface.object)));
+        // Numbers of this ray's own (its direction and the primitive it meets): the same ray gets
+        // the same ones in every frame, and rays that meet one primitive do not share a choice.
+        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(surface.object),
+                           (uint64_t(std::bit_cast<uint32_t>(ray.d.x)) << 32) ^ std::bit_cast<uint32_t>(ray.d.y) ^
+                               (uint64_t(std::bit_cast<uint32_t>(ray.d.z)) << 16)));
         if (bsdf->is_diffuse()) {
             const SurfacePoint facing = face_towards(surface, ray.d);
             const std::optional<Rgb> E = photons.lookup(surface.p, facing.ng, max_radius);
