@@ -17,6 +17,16 @@ SurfacePoint face_towards(SurfacePoint sp, Vec3 d) {
     return sp;
 }
 
+namespace {
+
+/// A hash of a ray's origin and direction, bit for bit.
+uint64_t ray_bits(const Ray& ray) {
+    const auto bits = [](float x) { return uint64_t(std::bit_cast<uint32_t>(x)); };
+    return hash_ids(bits(ray.o.x) << 32 | bits(ray.o.y), bits(ray.o.z) << 32 | bits(ray.d.x), bits(ray.d.y) << 32 | bits(ray.d.z));
+}
+
+}  // namespace
+
 GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
                               Visibility visibility, Ray ray) {
     GatherHit result;
@@ -30,11 +40,10 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         const SurfaceBsdf surface_bsdf = bsdf_at(context, surface);
         const Bsdf* bsdf = &*surface_bsdf;
         std::unique_ptr<Bsdf> coat;
-        // Numbers of this ray's own (its direction and the primitive it meets): the same ray gets
-        // the same ones in every frame, and rays that meet one primitive do not share a choice.
-        Pcg32 rng(hash_ids(uint64_t(hit->primitive), uint64_t(depth), uint64_t(surface.object),
-                           (uint64_t(std::bit_cast<uint32_t>(ray.d.x)) << 32) ^ std::bit_cast<uint32_t>(ray.d.y) ^
-                               (uint64_t(std::bit_cast<uint32_t>(ray.d.z)) << 16)));
+        // Numbers of this ray's own: rays that meet one primitive must not share a choice (with
+        // the fixed gather directions, every record on a wall casts rays of the same directions).
+        // The same ray gets the same numbers in every frame.
+        Pcg32 rng(hash_ids(ray_bits(ray), uint64_t(depth), uint64_t(hit->primitive), uint64_t(surface.object)));
         if (bsdf->is_diffuse()) {
             const SurfacePoint facing = face_towards(surface, ray.d);
             const std::optional<Rgb> E = photons.lookup(surface.p, facing.ng, max_radius);
