@@ -176,11 +176,19 @@ std::vector<int> frames_in(const std::vector<int>& frames, const Segment& segmen
     return inside;
 }
 
-/// One frame: the scene placed there and the method's frame pass.
+/// One frame: the scene placed there and the method's frame pass. A value that is not finite
+/// leaves as 0, counted in the frame's statistics and reported (output/frame_layers.h).
 RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
                            const StaticSolution* solution, int frame) {
     const PlacedFrame placed(scene, tracer, bsdfs, frame);
-    return method_info(settings.method).render_frame(placed.context(), solution, settings);
+    RenderedFrame rendered = method_info(settings.method).render_frame(placed.context(), solution, settings);
+    const NonFiniteValues non_finite = replace_non_finite(rendered.beauty, rendered.layers);
+    if (non_finite.count > 0)
+        spdlog::warn("frame {}: {} channel value(s) were NaN or infinite and are written as 0, the first in layer {} "
+                     "at pixel ({}, {}): a defect, please report it with the scene",
+                     frame, non_finite.count, non_finite.first_layer, non_finite.first_x, non_finite.first_y);
+    if (rendered.stats) rendered.stats->non_finite_values = non_finite.count;
+    return rendered;
 }
 
 /// Writes a rendered frame on `writer`'s thread while the next one renders, holding the frame's

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "steadylight/methods/method.h"
+#include "steadylight/output/frame_layers.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/passes/segment_pass.h"
 #include "steadylight/quality/image_error.h"
@@ -102,8 +103,10 @@ Rendered render_frame(const Case& c) {
     if (info.has_static_pass)
         solution = StaticSolution{run_segment_pass(scene, tracer, scene.segment_of(frame_number), settings.photon)};
     const PlacedFrame frame(scene, tracer, bsdfs, frame_number);
-    Rendered out{info.render_frame(frame.context(), solution ? &*solution : nullptr, settings).beauty,
-                 emitter_mask(frame.context()), PixelMask(80 * 60, 0)};
+    RenderedFrame rendered = info.render_frame(frame.context(), solution ? &*solution : nullptr, settings);
+    // Every channel of every layer finite (what the writer would otherwise replace by 0).
+    EXPECT_EQ(replace_non_finite(rendered.beauty, rendered.layers).count, 0);
+    Rendered out{std::move(rendered.beauty), emitter_mask(frame.context()), PixelMask(80 * 60, 0)};
     for (int i = 0; i < 80 * 60; ++i) {
         const Ray ray = frame.context().frame.camera.generate_ray(float(i % 80) + 0.5f, float(i / 80) + 0.5f);
         const std::optional<Hit> hit = tracer.intersect(ray);

@@ -1,6 +1,8 @@
 // The EXR layer list of a frame (frame_layers.h).
 #include "steadylight/output/frame_layers.h"
 
+#include <cmath>
+
 namespace steadylight {
 
 std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<NamedImage>& aovs) {
@@ -9,6 +11,27 @@ std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<Na
     std::vector<ExrLayer> layers{{"", &beauty}, {"beauty", &beauty}};
     for (const NamedImage& aov : aovs) layers.push_back({aov.name, &aov.image, aov.grey});
     return layers;
+}
+
+namespace {
+
+void replace_non_finite(Image& image, const std::string& layer, NonFiniteValues& found) {
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (float* value : {&image.at(x, y).r, &image.at(x, y).g, &image.at(x, y).b}) {
+                if (std::isfinite(*value)) continue;
+                if (found.count++ == 0) found.first_layer = layer, found.first_x = x, found.first_y = y;
+                *value = 0;
+            }
+}
+
+}  // namespace
+
+NonFiniteValues replace_non_finite(Image& beauty, std::vector<NamedImage>& aovs) {
+    NonFiniteValues found;
+    replace_non_finite(beauty, "beauty", found);
+    for (NamedImage& aov : aovs) replace_non_finite(aov.image, aov.name, found);
+    return found;
 }
 
 }  // namespace steadylight

@@ -5,6 +5,7 @@
 // grey, is the method table's to say (methods/method.h).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "steadylight/base/image.h"
@@ -15,5 +16,16 @@ namespace steadylight {
 /// The EXR layers of a frame: "" and "beauty" for `beauty`, then `aovs` in order. The result
 /// points into `beauty` and `aovs`, which must outlive it.
 std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<NamedImage>& aovs);
+
+/// The values of a frame's layers that were not finite (NaN, an infinity). No layer may hold
+/// one: it is a defect upstream, and a compositor's blur would spread it over the image.
+struct NonFiniteValues {
+    long count = 0;           // channel values
+    std::string first_layer;  // where the first one was ("beauty" for the beauty)
+    int first_x = 0, first_y = 0;
+};
+
+/// Replaces every non-finite channel value of `beauty` and `aovs` by 0 and says where they were.
+NonFiniteValues replace_non_finite(Image& beauty, std::vector<NamedImage>& aovs);
 
 }  // namespace steadylight

@@ -49,6 +49,7 @@ void for_each_later_json_field(Stats& s, Visit&& visit) {
     visit("/pixels/changed_direct", s.pixels_changed[1]);
     visit("/pixels/changed_indirect", s.pixels_changed[2]);
     visit("/pixels/changed_caustic", s.pixels_changed[3]);
+    visit("/non_finite_values", s.non_finite_values);
 }
 
 /// Whether the frame ran photon-mapping passes: photons, records, gathers or their phases' time.
@@ -104,6 +105,7 @@ std::string summarize(const FrameStats& s) {
     const bool paths = s.camera_samples > 0;
     std::string text = has_photon_mapping_figures(s) || !paths ? summarize_photon_mapping(s) : "";
     if (paths) text += (text.empty() ? "" : " | ") + summarize_paths(s);
+    if (s.non_finite_values > 0) text += fmt::format(" | {} non-finite values written as 0", s.non_finite_values);
     return text;
 }
 

@@ -45,6 +45,8 @@ struct FrameStats {
     long camera_samples = 0;          // path: pixels x samples per pixel
     long path_rays = 0;               // path: rays traced, closest-hit and shadow rays
     long path_vertices = 0;           // path: surface hits along the paths (per camera sample: path length)
+    long non_finite_values = 0;       // channel values of the frame's layers that were NaN or infinite,
+                                      // written as 0 (a defect: the tests expect none)
 };
 
 void to_json(nlohmann::json& json, const FrameStats& stats);
