@@ -1,7 +1,5 @@
 #include "steadylight/output/image_writer.h"
 
-#include <algorithm>
-
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -11,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -31,10 +30,11 @@ std::vector<std::pair<std::string, int>> layer_channels(const std::string& layer
 }
 
 /// `value` as a half, clamped to the largest finite half (65504): above it a half is +inf, which
-/// a compositor's blur would spread over the image.
+/// a compositor's blur would spread over the image. A NaN (which render_frame has replaced
+/// already, output/frame_layers.h) becomes 0 here too.
 half to_finite_half(float value) {
     constexpr float max_half = 65504.0f;
-    return half(std::clamp(value, -max_half, max_half));
+    return std::isnan(value) ? half(0.0f) : half(std::clamp(value, -max_half, max_half));
 }
 
 /// One channel's pixels, converted to the file's pixel type and kept alive until written.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include "steadylight/base/error.h"
 #include "steadylight/output/frame_layers.h"
@@ -91,6 +92,20 @@ TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     EXPECT_EQ(layers[1].name, "beauty");
     EXPECT_EQ(layers[3].name, "influence");
     EXPECT_EQ(layers[3].channels, (std::vector<std::string>{"Y"}));
+    fs::remove(path);
+}
+
+// Half layers hold only finite values: beyond 65504 a half is +inf (a compositor's blur would
+// spread it), so larger values are clamped to it, and a NaN is written as 0.
+TEST(ImageWriter, HalfExrValuesAreFinite) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_finite.exr").string();
+    Image image(3, 1);
+    image.at(0, 0) = {1e6f, -1e6f, 2};
+    image.at(1, 0) = {std::numeric_limits<float>::quiet_NaN(), 1, std::numeric_limits<float>::infinity()};
+    write_exr(path, image);
+    const Image back = read_exr(path);
+    EXPECT_EQ(back.at(0, 0), (Rgb{65504, -65504, 2}));
+    EXPECT_EQ(back.at(1, 0), (Rgb{0, 1, 65504}));
     fs::remove(path);
 }
 
