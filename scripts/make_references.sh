@@ -16,7 +16,7 @@ binary=${STEADYLIGHT:-build/steadylight}
 still_only=0
 if [ "${1:-}" = --still-only ]; then still_only=1; shift; fi
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(table corridor mirror_room glass_move flythrough switch_room ball cornell blender_room blender_textured)
+[ ${#scenes[@]} -gt 0 ] || scenes=(table corridor mirror_room glass_move flythrough switch_room ball cornell blender_room blender_textured blender_glass)
 out=tests/references
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
