@@ -323,6 +323,12 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
         std::fprintf(stderr, "steadylight: error: %s\n", e.what());
         return 1;
+    } catch (const OutputError& e) {
+        // Frames written before are whole (each file appears whole or not at all): the same
+        // command resumes once the cause is gone.
+        std::fprintf(stderr, "steadylight: error: %s (the frames written so far are complete; the same command resumes)\n",
+                     e.what());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "steadylight: internal error: %s\n", e.what());
         return 1;

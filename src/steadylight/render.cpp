@@ -54,6 +54,16 @@ StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, R
                                     settings.require_cache ? CacheUse::require : CacheUse::load_or_compute, std::move(paths));
 }
 
+/// Before any work: a static cache file of a method that has one cannot be a folder (it would
+/// fail only when the cache is computed and written).
+void check_cache_files(const RenderSettings& settings, const Scene& scene) {
+    if (!method_info(settings.method).has_static_pass) return;
+    for (const Segment& segment : scene.segments()) {
+        const std::string file = static_cache_file(settings.cache_file, settings.out_dir, scene, segment);
+        if (std::filesystem::is_directory(file)) throw InputError("--cache-file", file + " is a folder, not a file");
+    }
+}
+
 /// Whether frames compose their photon maps from static photon paths (photon_paths.h).
 bool reuses_photon_paths(const RenderSettings& settings) {
     return settings.reuse && method_info(settings.method).reads.photon;
@@ -305,7 +315,8 @@ RenderSummary render_animation(const RenderSettings& settings) {
     const Scene scene = load_scene(settings);
     const std::vector<int> frames = select_frames(settings.frames, scene.frame_count());
     if (!settings.output.video_file.empty()) check_video_possible(frames);  // before hours of rendering
-    std::filesystem::create_directories(settings.out_dir);
+    create_output_folder(settings.out_dir, "--out");
+    check_cache_files(settings, scene);
     const std::string key = record_settings(settings, scene, frames);
     RenderSummary summary;
     const std::vector<int> todo = frames_to_render(settings, scene, frames, key, summary);
@@ -336,7 +347,8 @@ std::vector<std::string> bake_static_caches(const RenderSettings& settings, std:
     if (only_segment && (*only_segment < 0 || *only_segment >= int(segments.size())))
         throw InputError("--segment", fmt::format("{} is not a segment of {}: it has {} (0 to {}; see steadylight info)",
                                                   *only_segment, settings.scene_file, segments.size(), segments.size() - 1));
-    std::filesystem::create_directories(settings.out_dir);
+    create_output_folder(settings.out_dir, "--out");
+    check_cache_files(settings, scene);
     RayTracer tracer(scene, scene.evaluate(only_segment ? segments[size_t(*only_segment)].first : 0));
     std::vector<std::string> files;
     for (const Segment& segment : segments) {

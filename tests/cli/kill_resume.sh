@@ -2,8 +2,8 @@
 # A render killed with SIGKILL at random moments, and resumed each time, ends with the files of
 # an uninterrupted render, and never leaves a truncated final file. Renders 20 small BALL frames
 # into A; then into B starts the same render 20 times, each killed with SIGKILL after a random
-# delay within the time the frames it has left took in A (so that it may die in the static pass,
-# inside a frame or while a frame is written, and the runs together get through the render).
+# delay within half the time the frames it has left took in A (so that it may die in the static
+# pass, inside a frame or while a frame is written, and the runs together get through the render).
 # After every kill each final file in B (image, statistics, manifest, static cache) is whole:
 # the images and the cache equal A's byte for byte (only .partial temporaries may be left).
 # A last run completes B: every image and the cache as in A, and no temporary left.
@@ -45,7 +45,7 @@ for i in $(seq 20); do
   "$binary" render "$scene" "${args[@]}" --out "$out/B" >> "$out/B.log" 2>&1 &
   pid=$!
   left=$(( 20 - $(complete_frames) ))
-  delay_ms=$(( RANDOM % (duration_ms * left / 20 + 1) ))
+  delay_ms=$(( RANDOM % (duration_ms * left / 40 + 1) ))
   sleep "$(printf '%d.%03d' $((delay_ms / 1000)) $((delay_ms % 1000)))"
   if kill -KILL $pid 2>/dev/null && [ $left -gt 0 ]; then kills=$((kills + 1)); fi
   wait $pid 2>/dev/null || true

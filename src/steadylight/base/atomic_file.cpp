@@ -1,9 +1,13 @@
 #include "steadylight/base/atomic_file.h"
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+
+#include "steadylight/base/error.h"
 
 namespace steadylight {
 namespace {
@@ -34,7 +38,8 @@ void write_file_atomically(const std::string& path, const std::function<void(con
     } catch (const std::exception& e) {
         std::error_code ignored;
         std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error("cannot write " + path + ": " + e.what());
+        if (std::filesystem::is_directory(path, ignored)) throw OutputError(path, "it is a folder");
+        throw OutputError(path, e.what());
     }
 }
 
@@ -45,11 +50,22 @@ void write_bytes(const std::string& path, const char* data, size_t size) {
         std::ofstream out(file, std::ios::binary);
         out.write(data, std::streamsize(size));
         out.close();
-        if (!out) throw std::runtime_error("write failed");
+        if (!out) throw std::runtime_error(std::strerror(errno));
     });
 }
 
 }  // namespace
+
+void create_output_folder(const std::string& dir, const std::string& option) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw InputError(option, dir + ": cannot create the folder: " + error.message());
+    // A file written and removed: a read-only folder or file system shows here, not after hours.
+    const std::string probe = (std::filesystem::path(dir) / ".steadylight-write-test").string();
+    if (std::ofstream out(probe); !(out << "ok" && (out.close(), out)))
+        throw InputError(option, dir + ": cannot write into the folder: " + std::strerror(errno));
+    std::filesystem::remove(probe, error);
+}
 
 void write_text_file(const std::string& path, const std::string& text) { write_bytes(path, text.data(), text.size()); }
 

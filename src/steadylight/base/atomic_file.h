@@ -10,7 +10,7 @@
 namespace steadylight {
 
 /// Runs `write(temporary_path)` and renames the result onto `path`; on failure removes the
-/// temporary file and throws std::runtime_error naming `path`.
+/// temporary file and throws OutputError naming `path`.
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
 /// While it lives, collects the paths that write_file_atomically renames into place (from any
@@ -29,6 +29,10 @@ private:
     mutable std::mutex m_mutex;
     std::vector<std::string> m_paths;
 };
+
+/// Creates the folder `dir` (and its parents) and checks that a file can be written in it, before
+/// any work: an InputError naming `option` (the command-line option that gave it) otherwise.
+void create_output_folder(const std::string& dir, const std::string& option);
 
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::string& path, const std::string& text);

@@ -204,7 +204,7 @@ SubmitResult submit_animation(const RenderSettings& settings, const SubmitSettin
     if (submit.chunk_frames < 1) throw InputError("--chunk", "must be at least 1 frame");
     const Scene scene = load_sized_scene(settings);
     const std::vector<int> frames = select_frames(settings.frames, scene.frame_count());
-    fs::create_directories(settings.out_dir);
+    create_output_folder(settings.out_dir, "--out");
     const std::string key = record_submit_settings(settings, scene, frames, submit.cpus_per_task);
     SubmitResult result;
     result.plan = plan_jobs(settings, scene, frames, key, submit.chunk_frames);
