@@ -22,6 +22,7 @@
 #include "steadylight/run/frame_claim.h"
 #include "steadylight/run/frame_manifest.h"
 #include "steadylight/run/frame_writer.h"
+#include "steadylight/run/memory_model.h"
 #include "steadylight/run/interrupt.h"
 #include "steadylight/run/settings_file.h"
 
@@ -81,7 +82,7 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& se
     }
     const Camera& camera = scene.evaluate(segment.first).camera;
     const double bytes = double(camera.width) * double(camera.height) * double(StaticFrame::bytes_per_pixel(settings.photon.shading.samples_per_pixel));
-    const double budget = double(memory_available()) / 4;
+    const double budget = double(memory_available().bytes) / 4;
     if (bytes > budget) {
         spdlog::info("pixel reuse: off: the static frame would need {:.0f} MB, more than a quarter of the {:.0f} MB "
                      "available; every pixel is shaded in every frame", bytes / 1e6, budget * 4 / 1e6);
@@ -315,6 +316,7 @@ RenderSummary render_animation(const RenderSettings& settings) {
     const Scene scene = load_scene(settings);
     const std::vector<int> frames = select_frames(settings.frames, scene.frame_count());
     if (!settings.output.video_file.empty()) check_video_possible(frames);  // before hours of rendering
+    check_memory(estimate_memory(settings, scene), memory_available());
     create_output_folder(settings.out_dir, "--out");
     check_cache_files(settings, scene);
     const std::string key = record_settings(settings, scene, frames);
@@ -347,6 +349,7 @@ std::vector<std::string> bake_static_caches(const RenderSettings& settings, std:
     if (only_segment && (*only_segment < 0 || *only_segment >= int(segments.size())))
         throw InputError("--segment", fmt::format("{} is not a segment of {}: it has {} (0 to {}; see steadylight info)",
                                                   *only_segment, settings.scene_file, segments.size(), segments.size() - 1));
+    check_memory(estimate_memory(settings, scene), memory_available());
     create_output_folder(settings.out_dir, "--out");
     check_cache_files(settings, scene);
     RayTracer tracer(scene, scene.evaluate(only_segment ? segments[size_t(*only_segment)].first : 0));
@@ -368,14 +371,12 @@ std::string describe_scene(const std::string& scene_file) {
                         segment_list(scene.segments()));
     text += fmt::format("camera: {}x{}, vertical fov {} deg{}\n", desc.camera.width, desc.camera.height,
                         desc.camera.fov_y_deg, is_chain_animated(desc.camera.placement) ? ", animated" : "");
-    long triangles = 0;
     int area_lights = 0, animated_lights = 0;
     std::string objects;
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         const ObjectDesc& object = desc.objects[i];
         const auto* mesh = std::get_if<TriangleMesh>(&object.geometry);
         const long count = mesh ? long(mesh->indices.size() / 3) : 0;
-        triangles += count;
         area_lights += object.is_emitter();
         animated_lights += object.is_emission_animated();
         const char* emitter = object.is_emission_animated() ? "emitter, animated emission" : object.is_emitter() ? "emitter" : "";
@@ -385,7 +386,7 @@ std::string describe_scene(const std::string& scene_file) {
     }
     for (const PointLightDesc& light : desc.point_lights) animated_lights += light.is_intensity_animated();
     text += fmt::format("objects: {} ({} static, {} dynamic), {} triangles\n", desc.objects.size(),
-                        scene.static_objects().size(), scene.dynamic_objects().size(), triangles);
+                        scene.static_objects().size(), scene.dynamic_objects().size(), triangle_count(desc));
     text += objects;
     text += fmt::format("lights: {} area, {} point/spot", area_lights, desc.point_lights.size());
     text += animated_lights ? fmt::format(", {} animated (switched or dimmed; a new segment where they change)\n", animated_lights)

@@ -1,9 +1,6 @@
 #include "steadylight/passes/pixel_reuse.h"
 
-#include <unistd.h>
-
 #include <cmath>
-#include <fstream>
 
 #include "steadylight/base/parallel.h"
 
@@ -91,14 +88,6 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
         for (int bit = 0; bit < 4; ++bit) plan.changed_pixels[bit] += (plan.changed[i] >> bit) & 1;
     }
     return plan;
-}
-
-size_t memory_available() {
-    const size_t physical = size_t(sysconf(_SC_PHYS_PAGES)) * size_t(sysconf(_SC_PAGE_SIZE));
-    std::ifstream limit("/sys/fs/cgroup/memory.max");  // cgroup v2; "max" when unlimited
-    size_t cgroup = 0;
-    if (limit >> cgroup && cgroup > 0) return std::min(physical, cgroup);
-    return physical;
 }
 
 bool same_view_and_lights(const Scene& scene, const FrameState& frame, const FrameState& static_frame) {

@@ -62,10 +62,6 @@ enum class Outline { box, round };
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
                            Outline outline = Outline::box);
 
-/// Bytes of memory this process may use: the cgroup's limit where there is one, else the
-/// machine's physical memory.
-size_t memory_available();
-
 /// Whether a frame of `scene` at `frame` may reuse pixels of a static frame made at `static_frame`
 /// of the same segment: the same camera, lights and emissions, and no dynamic object emits.
 bool same_view_and_lights(const Scene& scene, const FrameState& frame, const FrameState& static_frame);

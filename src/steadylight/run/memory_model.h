@@ -1,0 +1,47 @@
+// What a render needs in memory, estimated before any work from the image size, the photon
+// counts and the scene's triangles, against what this process may use: a render that cannot fit
+// stops at once with the figure and the option to lower, not with an out-of-memory kill an hour
+// later. The model (README "Memory"), measured on 2026-12-02 by peak resident size on BALL and the
+// 2.1-million-triangle terrain, rounded up: a fixed 64 MB (the program, its libraries, the
+// scene's small parts); 160 bytes per triangle (the mesh and Embree's BVH; measured 150); per
+// pixel 250 bytes for the photon methods (the frame's layers, the caches' pixel bookkeeping;
+// measured 140-190) and 60 for the path tracer (measured 25); 300 bytes per photon path emitted
+// (global and caustic: stored photons, their kd-trees, the precomputed irradiance and the static
+// paths kept for reuse; measured 220 on BALL, more in brighter rooms whose paths are longer).
+// The localized method's still-camera static frame is not counted: it is optional, and made only
+// when it fits in a quarter of what is available (render.cpp).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "steadylight/run/render_settings.h"
+#include "steadylight/scene/scene.h"
+
+namespace steadylight {
+
+struct MemoryEstimate {
+    double scene = 0, pixels = 0, photons = 0;  // bytes, beside the fixed part
+    double total() const;
+};
+
+/// What rendering `scene` (at its final size) with `settings` needs.
+MemoryEstimate estimate_memory(const RenderSettings& settings, const Scene& scene);
+
+/// What this process may use, and where that limit comes from: the cgroup's limit (v2 or v1),
+/// Slurm's (SLURM_MEM_PER_NODE, or SLURM_MEM_PER_CPU times SLURM_CPUS_ON_NODE), whichever is
+/// smallest, else the machine's physical memory.
+struct MemoryLimit {
+    size_t bytes = 0;
+    std::string source;
+};
+MemoryLimit memory_available();
+
+/// Throws InputError when the estimate exceeds `limit`, saying how much it would need, how much
+/// there is and which option to lower (the largest part's).
+void check_memory(const MemoryEstimate& need, const MemoryLimit& limit);
+
+/// Triangles of every mesh of the scene.
+long triangle_count(const SceneDesc& desc);
+
+}  // namespace steadylight
