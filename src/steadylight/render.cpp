@@ -22,8 +22,8 @@
 #include "steadylight/run/frame_claim.h"
 #include "steadylight/run/frame_manifest.h"
 #include "steadylight/run/frame_writer.h"
-#include "steadylight/run/memory_model.h"
 #include "steadylight/run/interrupt.h"
+#include "steadylight/run/memory_model.h"
 #include "steadylight/run/settings_file.h"
 
 namespace steadylight {

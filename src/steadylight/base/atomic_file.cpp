@@ -1,5 +1,7 @@
 #include "steadylight/base/atomic_file.h"
 
+#include <unistd.h>
+
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -61,7 +63,8 @@ void create_output_folder(const std::string& dir, const std::string& option) {
     std::filesystem::create_directories(dir, error);
     if (error) throw InputError(option, dir + ": cannot create the folder: " + error.message());
     // A file written and removed: a read-only folder or file system shows here, not after hours.
-    const std::string probe = (std::filesystem::path(dir) / ".steadylight-write-test").string();
+    // Named per process: renders of one folder on a farm start together.
+    const std::string probe = (std::filesystem::path(dir) / (".steadylight-write-test-" + std::to_string(getpid()))).string();
     if (std::ofstream out(probe); !(out << "ok" && (out.close(), out)))
         throw InputError(option, dir + ": cannot write into the folder: " + std::strerror(errno));
     std::filesystem::remove(probe, error);
