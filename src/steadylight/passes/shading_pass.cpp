@@ -14,6 +14,8 @@ namespace {
 constexpr int tile_size = 16;
 /// Delta bounces up to this depth follow every lobe (glass: reflection and refraction).
 constexpr int max_split_depth = 2;
+/// Bounces followed from a glossy surface the camera sees directly.
+constexpr int glossy_camera_bounces = 4;
 
 /// The lighting along a camera ray split the way the EXR's layers are.
 using Components = PixelSums;
@@ -190,9 +192,9 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     if (depth >= m_settings.max_specular_depth) return c;
     // What the bounce sees keeps this camera ray's light strata: each camera ray still reaches
     // at most one diffuse point along each branch.
-    const auto follow = [&](const Bounce& bounce, float share) {
+    const auto follow = [&](const Bounce& bounce, float share, bool minor) {
         PixelSample branch = pixel;
-        branch.minor_branch = pixel.minor_branch || share < 0.5f;
+        branch.minor_branch = pixel.minor_branch || minor;
         c.specular += bounce.sample.weight * share * shade(bounce.ray, depth + 1, bounce.sample.is_delta, branch, strata, rng).sum();
     };
     const float u_lobe = rng.next_float();
@@ -204,16 +206,24 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         // object. A single lobe (a mirror, total internal reflection) is followed once.
         const std::optional<Bounce> first = sample_bounce(bsdf, surface, ray.d, u, 0.0f, TransportMode::radiance);
         if (first && first->sample.pdf < 1) {
-            follow(*first, first->sample.pdf);
+            follow(*first, first->sample.pdf, first->sample.pdf < 0.5f);
             const std::optional<Bounce> last = sample_bounce(bsdf, surface, ray.d, u, 0x1.fffffep-1f, TransportMode::radiance);
-            if (last) follow(*last, last->sample.pdf);
+            if (last) follow(*last, last->sample.pdf, last->sample.pdf < 0.5f);
         } else if (first) {
-            follow(*first, 1);
+            follow(*first, 1, false);
         }
         return c;
     }
-    const std::optional<Bounce> bounce = sample_bounce(bsdf, surface, ray.d, u, u_lobe, TransportMode::radiance);
-    if (bounce) follow(*bounce, 1);
+    // A glossy surface the camera sees (rough glass above all) is followed along several
+    // bounces, each with numbers of its own: through a frosted pane one bounce's noise shows as
+    // grain, a lamp seen through it now and then as a speck (docs/truth-suite.md, "Glass").
+    const int bounces = depth == 0 ? glossy_camera_bounces : 1;
+    for (int k = 0; k < bounces; ++k) {
+        const std::optional<Bounce> bounce = k == 0 ? sample_bounce(bsdf, surface, ray.d, u, u_lobe, TransportMode::radiance)
+                                                    : sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), rng.next_float(),
+                                                                    TransportMode::radiance);
+        if (bounce) follow(*bounce, 1.0f / float(bounces), bounces > 1);
+    }
     return c;
 }
 
