@@ -2,6 +2,7 @@
 #include "steadylight/photons/surface_coverage.h"
 
 #include <cmath>
+#include <memory>
 
 #include "steadylight/base/rng.h"
 #include "steadylight/shading/surface_point.h"
@@ -11,25 +12,34 @@ namespace {
 
 constexpr float same_side_cosine = 0.5f;  // as the photons' normal filter (photon.h, same_side)
 
+/// What the probes need, kept by the coverage's functions: the scene and the tracer by reference
+/// (they outlive the frames), the frame's placement by value.
+struct ProbeWorld {
+    const Scene& scene;
+    const RayTracer& tracer;
+    FrameState frame;
+    Visibility visibility;
+};
+
 /// Whether the surface met by `ray` (if any) faces `n`'s way, seen from the ray's side.
-bool meets_surface_facing(const FrameContext& context, const Ray& ray, Vec3 n, Visibility visibility) {
-    const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
+bool meets_surface_facing(const ProbeWorld& world, const Ray& ray, Vec3 n) {
+    const std::optional<Hit> hit = world.tracer.intersect(ray, world.visibility);
     if (!hit) return false;
-    const Vec3 ng = make_surface_point(context.scene, context.frame, ray, *hit).ng;
+    const Vec3 ng = make_surface_point(world.scene, world.frame, ray, *hit).ng;
     return std::abs(dot(ng, n)) > same_side_cosine;  // two-sided: the side facing the ray
 }
 
 /// Whether the surface under the centre `p` (normal `n`) reaches the disc point `q`, at most
 /// `reach` below the tangent plane.
-bool covers(const FrameContext& context, Visibility visibility, Vec3 p, Vec3 n, Vec3 q, float lift, float reach) {
+bool covers(const ProbeWorld& world, Vec3 p, Vec3 n, Vec3 q, float lift, float reach) {
     const Vec3 along = q - p;
     const float distance = length(along);
     if (distance <= lift) return true;  // the centre itself is on the surface
     const Ray across{p + n * lift, along / distance, distance};
-    if (context.tracer.occluded(across, visibility)) return meets_surface_facing(context, across, n, visibility);
+    if (world.tracer.occluded(across, world.visibility)) return meets_surface_facing(world, across, n);
     // Any surface within reach below the point counts (an occlusion ray: cheaper than finding
     // which surface, and what lies below a tangent plane faces up).
-    return context.tracer.occluded({q + n * lift, -n, lift + reach}, visibility);
+    return world.tracer.occluded({q + n * lift, -n, lift + reach}, world.visibility);
 }
 
 /// How far off the surface the probes start: a little of the disc, well above the ray epsilon.
@@ -38,8 +48,9 @@ float lift_for(Vec3 p, float radius) { return std::max(coverage_lift * radius, 1
 }  // namespace
 
 SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibility) {
+    const auto world = std::make_shared<const ProbeWorld>(ProbeWorld{context.scene, context.tracer, context.frame, visibility});
     SurfaceCoverage coverage;
-    coverage.probes = [&context, visibility](Vec3 p, Vec3 n, float radius, uint64_t seed) {
+    coverage.probes = [world](Vec3 p, Vec3 n, float radius, uint64_t seed) {
         const Frame frame = Frame::from_normal(n);
         const float lift = lift_for(p, radius);
         const uint64_t bits = hash_ids(seed);
@@ -54,13 +65,13 @@ SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibil
             for (int j = 0; j < DiscProbes::sectors; ++j) {
                 const float phi = 2 * pi * (float(j) + probes.turn + 0.5f * float(ring)) / DiscProbes::sectors;
                 const Vec3 q = p + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0});
-                if (covers(context, visibility, p, n, q, lift, radius))
+                if (covers(*world, p, n, q, lift, radius))
                     probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
             }
         }
         return probes;
     };
-    coverage.reaches = [&context, visibility](Vec3 p, Vec3 n, float radius, Vec3 q) {
+    coverage.reaches = [world](Vec3 p, Vec3 n, float radius, Vec3 q) {
         const float lift = lift_for(p, radius), height = dot(q - p, n);
         // In front of the disc's plane (another surface a little off it, such as a lamp's
         // housing hung just under the ceiling, or a concave one curving up): seen from the centre
@@ -68,9 +79,9 @@ SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibil
         if (height > lift) {
             const Vec3 along = q - p;
             const float distance = length(along);
-            return !context.tracer.occluded({p + n * lift, along / distance, distance}, visibility);
+            return !world->tracer.occluded({p + n * lift, along / distance, distance}, world->visibility);
         }
-        return covers(context, visibility, p, n, q - n * height, lift, radius);
+        return covers(*world, p, n, q - n * height, lift, radius);
     };
     return coverage;
 }

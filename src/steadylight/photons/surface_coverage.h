@@ -28,7 +28,9 @@
 namespace steadylight {
 
 /// The coverage of discs on the surfaces `visibility` sees at `context`'s frame. The returned
-/// function refers to `context`, which must outlive it.
+/// functions keep a copy of the frame's placement (FrameState) and refer to `context`'s scene and
+/// ray tracer, which must outlive them, not to the context itself: a segment's precomputed
+/// irradiance keeps its coverage for its look-ups after the frame it was made at is gone.
 SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibility);
 
 }  // namespace steadylight
