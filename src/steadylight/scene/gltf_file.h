@@ -18,7 +18,7 @@ inline std::string describe(const std::string& kind, size_t index, const std::st
     return kind + " " + std::to_string(index) + (name.empty() ? "" : " \"" + name + "\"");
 }
 
-/// True when the image holds decoded 8-bit RGBA pixels (gltf_loader.cpp decode_image).
+/// True when the image holds decoded 8-bit RGBA pixels (gltf_loader.cpp decode_gltf_image).
 inline bool is_decoded(const tinygltf::Image& image) {
     return image.component == 4 && image.bits == 8 && image.width > 0 && image.height > 0 &&
            image.image.size() == size_t(image.width) * size_t(image.height) * 4;

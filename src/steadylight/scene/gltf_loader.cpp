@@ -16,11 +16,11 @@
 #include <set>
 
 #include <fmt/format.h>
-#include <stb_image.h>
 
 #include "steadylight/scene/gltf_accessors.h"
 #include "steadylight/scene/gltf_animation.h"
 #include "steadylight/scene/gltf_materials.h"
+#include "steadylight/scene/image_decoding.h"
 #include "steadylight/scene/shapes.h"
 
 namespace steadylight {
@@ -50,30 +50,23 @@ std::string trim_newlines(std::string s) {
     return s;
 }
 
-/// Decodes an embedded or external PNG or JPEG with stb_image into 8-bit RGBA (tinygltf reads
-/// the bytes, from the buffer view, the data URI or the file beside the glTF). An image stb_image
-/// cannot read (KTX2, WebP, a broken file) stays empty: textures using it are ignored, with a
-/// warning (gltf_materials.cpp).
-bool decode_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                  const unsigned char* bytes, int size, void*) {
-    if (!bytes || size <= 0) {
-        if (err) *err += fmt::format("image {} \"{}\": no data\n", index, image->uri);
+/// tinygltf's image callback: decodes an embedded or external image (tinygltf reads the bytes,
+/// from the buffer view, the data URI or the file beside the glTF) into 8-bit RGBA. An image that
+/// is not PNG or JPEG (KTX2, WebP, a broken file) stays empty: textures using it are ignored, with
+/// a warning (gltf_materials.cpp). One too large to decode fails the load.
+bool decode_gltf_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                       const unsigned char* bytes, int size, void*) {
+    DecodedImage decoded = decode_image(bytes, size > 0 ? size_t(size) : 0);
+    if (decoded.too_large) {
+        if (err) *err += fmt::format("image {} \"{}\": {}\n", index, image->uri, decoded.problem);
         return false;
     }
-    int width = 0, height = 0, channels = 0;
-    stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
-    if (!pixels) {
-        image->image.clear();
-        image->width = image->height = 0;
-        return true;
-    }
-    image->width = width;
-    image->height = height;
+    image->width = decoded.width;
+    image->height = decoded.height;
     image->component = 4;
     image->bits = 8;
     image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
-    stbi_image_free(pixels);
+    image->image = std::move(decoded.rgba);
     return true;
 }
 
@@ -84,7 +77,7 @@ tinygltf::Model load_model(const std::string& path) {
                          "unknown glTF file extension \"" + ext + "\" (expected .gltf or .glb)");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path, "file not found");
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(decode_image, nullptr);
+    loader.SetImageLoader(decode_gltf_image, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)

@@ -1,6 +1,6 @@
 // glTF textures (docs/gltf.md, "Textures"): PNG and JPEG images, external and embedded, decoded
 // by stb_image; samplers, KHR_texture_transform, TEXCOORD_0/1, COLOR_0, generated tangents,
-// alpha modes and KHR_materials_specular, read from a hand-written .gltf.
+// alpha modes and KHR_materials_specular, read from a hand-written .gltf; the image size limit.
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
@@ -10,6 +10,8 @@
 
 #include "steadylight/base/error.h"
 #include "steadylight/scene/gltf_loader.h"
+#include "steadylight/scene/image_decoding.h"
+#include "support/input_error.h"
 
 namespace steadylight {
 namespace {
@@ -165,6 +167,14 @@ TEST_F(GltfTexture, UndecodableImageLeavesItsTexturesOut) {
     ASSERT_EQ(desc.images.size(), 2u);  // the indices of the others stay as they were
     EXPECT_FALSE(desc.materials.at(0).base_color_texture.is_set());
     EXPECT_EQ(desc.materials.at(0).normal_texture.image, 1);
+}
+
+TEST_F(GltfTexture, ImageTooLargeToDecodeIsAnInputErrorNamingIt) {
+    // Its size is read from the header before any texel is decoded.
+    const std::vector<unsigned char> row(size_t(max_image_side + 1) * 4, 255);
+    ASSERT_TRUE(stbi_write_png((m_dir / "wide.png").c_str(), max_image_side + 1, 1, 4, row.data(), 0));
+    const std::string error = testing::input_error_of([&] { load(R"({"uri": "wide.png"}, {"uri": "tex.jpg"})"); });
+    EXPECT_NE(error.find("image 0 \"wide.png\": too large (16385 x 1 texels"), std::string::npos) << error;
 }
 
 TEST_F(GltfTexture, MissingExternalImageIsAnInputError) {

@@ -1,0 +1,30 @@
+// Decoding the PNG and JPEG images of glTF textures with stb_image, built here for those two
+// formats only (the smaller the decoder, the less a crafted file can reach), and an image's size
+// checked from its header before any pixel is decoded.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace steadylight {
+
+/// The largest image decoded: 16384 texels on a side and 2^26 texels (8192 x 8192) in all, so
+/// that one texture costs at most 256 MB as 8-bit RGBA (about three copies live while loading).
+constexpr int max_image_side = 16384;
+constexpr int64_t max_image_texels = int64_t(1) << 26;
+
+struct DecodedImage {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;  // 8-bit RGBA, rows top to bottom; empty when not decoded
+    /// Why the image was not decoded: "not a PNG or JPEG image (...)" or "too large (...)".
+    std::string problem;
+    bool too_large = false;
+};
+
+/// Decodes `size` bytes of a PNG or JPEG file into 8-bit RGBA.
+DecodedImage decode_image(const unsigned char* bytes, size_t size);
+
+}  // namespace steadylight
