@@ -30,8 +30,12 @@ std::optional<std::string> file_checksum(const fs::path& path) {
 /// Why the file a manifest entry names is not as written, or "" when it is.
 std::string check_entry(const fs::path& out_dir, const nlohmann::json& entry) {
     const std::string name = entry.at("name").get<std::string>();
-    const fs::path path = out_dir / name;
+    // Only files of the folder: a damaged manifest must not send the check to /dev/zero.
+    const fs::path relative = fs::path(name).lexically_normal();
+    if (name.empty() || relative.is_absolute() || *relative.begin() == "..") return "its manifest names \"" + name + "\"";
+    const fs::path path = out_dir / relative;
     std::error_code error;
+    if (!fs::is_regular_file(path, error)) return name + " is missing";
     const uintmax_t bytes = fs::file_size(path, error);
     if (error) return name + " is missing";
     if (bytes != entry.at("bytes").get<uintmax_t>())

@@ -2,6 +2,7 @@
 #include "steadylight/run/frame_manifest.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -67,6 +68,16 @@ TEST_F(FrameManifest, ChangedOrMissingFileIsIncomplete) {
 TEST_F(FrameManifest, OtherSettingsKeyIsIncomplete) {
     EXPECT_FALSE(check("key2").complete);
     EXPECT_EQ(check("key2").problem, "it was rendered with other settings");
+}
+
+TEST_F(FrameManifest, ManifestNamingFilesOutsideTheFolderIsIncomplete) {
+    // /dev/zero has size 0: checking it would read forever.
+    for (const std::string name : {"/dev/zero", "../s_0003.png", "sub/../../s_0003.png", ""}) {
+        const nlohmann::json manifest = {{"settings_key", "key1"},
+                                         {"files", {{{"name", name}, {"bytes", 0}, {"checksum", "0"}}}}};
+        write_text_file(frame_manifest_name(m_dir, "s", 3), manifest.dump());
+        EXPECT_EQ(check().problem, "its manifest names \"" + name + "\"");
+    }
 }
 
 TEST_F(FrameManifest, DamagedManifestIsIncomplete) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -15,6 +16,7 @@
 #include "steadylight/base/file_lock.h"
 #include "steadylight/base/hash.h"
 #include "steadylight/run/frame_selection.h"
+#include "steadylight/scene/scene_desc.h"
 
 namespace steadylight {
 namespace {
@@ -44,9 +46,23 @@ int format_of(const nlohmann::json& render) {
     return version.is_number_integer() ? version.get<int>() : 0;
 }
 
-std::vector<int> frames_of(const nlohmann::json& json) {
-    const std::string text = json.value("frames", "");
-    return text.empty() ? std::vector<int>{} : select_frames(parse_frame_selection(text), 1 << 30);
+/// The frames a settings file lists; nullopt when the list is damaged (not a string, not a frame
+/// list, or more frames than a scene may have).
+std::optional<std::vector<int>> frames_of(const nlohmann::json& json) {
+    const auto frames = json.find("frames");
+    if (frames == json.end()) return std::vector<int>{};
+    if (!frames->is_string()) return std::nullopt;
+    const std::string& text = frames->get_ref<const std::string&>();
+    if (text.empty()) return std::vector<int>{};
+    try {
+        const FrameSelection selection = parse_frame_selection(text);
+        int64_t listed = 0;
+        for (const FrameSpan& span : selection.spans) listed += (int64_t(span.last) - span.first) / span.step + 1;
+        if (listed > max_frame_count) return std::nullopt;
+        return select_frames(selection, max_frame_count);
+    } catch (const InputError&) {
+        return std::nullopt;
+    }
 }
 
 /// "/render/method: \"photon\" -> \"localized\"; ..." for the differences of two "render" parts.
@@ -114,12 +130,16 @@ void write_settings_file(const std::string& path, nlohmann::json settings_json, 
             spdlog::warn("{}: settings changed ({}); --overwrite renders the selected frames again", path, differences);
         } else if (before.contains("render")) {
             // Same settings: the file lists the frames of every run.
-            std::vector<int> frames = frames_of(before);
-            const std::vector<int> now = frames_of(settings_json);
-            frames.insert(frames.end(), now.begin(), now.end());
-            std::sort(frames.begin(), frames.end());
-            frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-            settings_json["frames"] = format_frame_list(frames);
+            std::optional<std::vector<int>> frames = frames_of(before);
+            if (!frames) {
+                spdlog::warn("{}: its list of frames is damaged; it lists this run's frames only", path);
+                frames.emplace();
+            }
+            const std::vector<int> now = frames_of(settings_json).value();
+            frames->insert(frames->end(), now.begin(), now.end());
+            std::sort(frames->begin(), frames->end());
+            frames->erase(std::unique(frames->begin(), frames->end()), frames->end());
+            settings_json["frames"] = format_frame_list(*frames);
         }
     }
     write_text_file(path, settings_json.dump(2) + "\n");

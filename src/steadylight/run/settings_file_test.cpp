@@ -90,6 +90,18 @@ TEST_F(SettingsFile, SameSettingsResumeAndCollectFrames) {
     EXPECT_EQ(settings_key(read()), settings_key(json({})));
 }
 
+TEST_F(SettingsFile, DamagedFrameListIsReplacedByThisRunsFrames) {
+    // Not a string, not a frame list, and more frames than a scene may have (which would take
+    // gigabytes to list).
+    for (const nlohmann::json& damaged : {nlohmann::json(5), nlohmann::json("1-x"), nlohmann::json("0-2000000000")}) {
+        nlohmann::json earlier = json({0, 1});
+        earlier["frames"] = damaged;
+        std::ofstream(m_path) << earlier.dump();
+        EXPECT_NO_THROW(write_settings_file(m_path, json({5}), false)) << damaged;
+        EXPECT_EQ(read()["frames"], "5") << damaged;
+    }
+}
+
 TEST_F(SettingsFile, OtherSettingsAreAnErrorNamingThem) {
     write_settings_file(m_path, json({0, 1}), false);
     m_settings.photon.photons.global_photons = 5000;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -408,7 +409,10 @@ bool is_gltf_file(const std::string& path) {
     return ext == ".gltf" || ext == ".glb";
 }
 
-int frames_covering(float duration_s, float fps) { return 1 + int(std::floor(duration_s * fps + 1e-3f)); }
+int frames_covering(float duration_s, float fps) {
+    const double frames = 1 + std::floor(double(duration_s) * double(fps) + 1e-3);
+    return frames < double(INT_MAX) ? int(frames) : INT_MAX;  // validate() says when it is too many
+}
 
 SceneDesc load_gltf_scene_desc(const std::string& path) {
     SceneDesc desc;

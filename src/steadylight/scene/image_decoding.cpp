@@ -1,15 +1,21 @@
-// stb_image's implementation lives in this file alone, static (STB_IMAGE_STATIC) so that it does
-// not meet Debian's libstb (linked for stb_image_write), with PNG and JPEG only and no stdio.
+// PNG through stb_image, built here for PNG alone (STBI_ONLY_PNG) and static (STB_IMAGE_STATIC)
+// so that it does not meet Debian's libstb, which is linked for stb_image_write. JPEG through
+// libjpeg-turbo: the stb_image of Debian 12 predates fixes of JPEG defects our fuzzing found
+// (Huffman tables of more than 256 codes written past their arrays, nothings/stb#1289; symbol
+// indices out of range in stbi__jpeg_huff_decode, nothings/stb#1291), which cannot be ruled out
+// from outside, while libjpeg-turbo is maintained and fuzzed upstream (OSS-Fuzz).
 #include "steadylight/scene/image_decoding.h"
 
 #include <climits>
+#include <csetjmp>
+#include <cstdio>
 
 #include <fmt/format.h>
+#include <jpeglib.h>
 
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
 #define STBI_NO_STDIO
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
@@ -23,25 +29,29 @@
 #endif
 
 namespace steadylight {
+namespace {
 
-DecodedImage decode_image(const unsigned char* bytes, size_t size) {
+bool is_jpeg(const unsigned char* bytes, size_t size) {
+    return size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+}
+
+/// Sets `image.problem` when `width` x `height` exceeds the limits of image_decoding.h.
+bool fits_the_limits(int64_t width, int64_t height, DecodedImage& image) {
+    if (width <= max_image_side && height <= max_image_side && width * height <= max_image_texels) return true;
+    image.problem = fmt::format("too large ({} x {} texels; at most {} on a side and 8192 x 8192 in all)", width,
+                                height, max_image_side);
+    image.too_large = true;
+    return false;
+}
+
+DecodedImage decode_png(const unsigned char* bytes, size_t size) {
     DecodedImage image;
-    if (!bytes || size == 0 || size > size_t(INT_MAX)) {
-        image.problem = "not a PNG or JPEG image (no data)";
-        return image;
-    }
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, int(size), &width, &height, &channels)) {
         image.problem = fmt::format("not a PNG or JPEG image ({})", stbi_failure_reason());
         return image;
     }
-    if (width > max_image_side || height > max_image_side ||
-        int64_t(width) * int64_t(height) > max_image_texels) {
-        image.problem = fmt::format("too large ({} x {} texels; at most {} on a side and {} x {} in all)",
-                                    width, height, max_image_side, 8192, 8192);
-        image.too_large = true;
-        return image;
-    }
+    if (!fits_the_limits(width, height, image)) return image;
     stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &width, &height, &channels, 4);
     if (!pixels) {
         image.problem = fmt::format("not a PNG or JPEG image ({})", stbi_failure_reason());
@@ -51,6 +61,67 @@ DecodedImage decode_image(const unsigned char* bytes, size_t size) {
     image.height = height;
     image.rgba.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
     stbi_image_free(pixels);
+    return image;
+}
+
+/// libjpeg reports errors through error_exit, which must not return: it jumps back to
+/// decode_jpeg with the message.
+struct JpegErrors {
+    jpeg_error_mgr manager;
+    std::jmp_buf jump;
+    char message[JMSG_LENGTH_MAX];
+};
+
+[[noreturn]] void jump_back_with_the_message(j_common_ptr info) {
+    JpegErrors* errors = reinterpret_cast<JpegErrors*>(info->err);
+    (*info->err->format_message)(info, errors->message);
+    std::longjmp(errors->jump, 1);
+}
+
+void ignore_warnings(j_common_ptr, int) {}
+
+/// Decodes into `image` (the caller's, so that nothing this function changes after setjmp is an
+/// automatic variable of it); false with image.problem set on failure.
+bool read_jpeg(const unsigned char* bytes, size_t size, DecodedImage& image) {
+    jpeg_decompress_struct info{};
+    JpegErrors errors{};
+    info.err = jpeg_std_error(&errors.manager);
+    errors.manager.error_exit = jump_back_with_the_message;
+    errors.manager.emit_message = ignore_warnings;
+    if (setjmp(errors.jump)) {
+        jpeg_destroy_decompress(&info);
+        image.rgba.clear();
+        image.problem = fmt::format("not a PNG or JPEG image (JPEG: {})", errors.message);
+        return false;
+    }
+    jpeg_create_decompress(&info);
+    jpeg_mem_src(&info, bytes, static_cast<unsigned long>(size));
+    jpeg_read_header(&info, TRUE);
+    if (!fits_the_limits(info.image_width, info.image_height, image)) {
+        jpeg_destroy_decompress(&info);
+        return false;
+    }
+    info.out_color_space = JCS_EXT_RGBA;  // grey and YCbCr alike, alpha 255
+    jpeg_start_decompress(&info);
+    image.width = int(info.output_width);
+    image.height = int(info.output_height);
+    image.rgba.resize(size_t(image.width) * size_t(image.height) * 4);
+    while (info.output_scanline < info.output_height) {
+        JSAMPROW row = image.rgba.data() + size_t(info.output_scanline) * size_t(image.width) * 4;
+        jpeg_read_scanlines(&info, &row, 1);
+    }
+    jpeg_finish_decompress(&info);
+    jpeg_destroy_decompress(&info);
+    return true;
+}
+
+}  // namespace
+
+DecodedImage decode_image(const unsigned char* bytes, size_t size) {
+    if (!bytes || size == 0 || size > size_t(INT_MAX)) return {.problem = "not a PNG or JPEG image (no data)"};
+    DecodedImage image;
+    if (!is_jpeg(bytes, size)) return decode_png(bytes, size);
+    if (!read_jpeg(bytes, size, image)) image.width = image.height = 0;
     return image;
 }
 

@@ -1,6 +1,6 @@
-// Decoding the PNG and JPEG images of glTF textures with stb_image, built here for those two
-// formats only (the smaller the decoder, the less a crafted file can reach), and an image's size
-// checked from its header before any pixel is decoded.
+// Decoding the PNG and JPEG images of glTF textures (PNG with stb_image, built here for PNG only;
+// JPEG with libjpeg-turbo: image_decoding.cpp says why), an image's size checked from its header
+// before any pixel is decoded.
 #pragma once
 
 #include <cstddef>

@@ -343,6 +343,10 @@ bool is_ever_lit(const Track<Rgb>& track) {
 void validate(const SceneDesc& desc) {
     const std::string& file = desc.source_file;
     if (desc.frame_count < 1) throw InputError(file, "the scene has no frames");
+    if (desc.frame_count > max_frame_count)
+        throw InputError(file, fmt::format("{} frames: an animation has at most {} (11.5 hours at 24 fps); split it "
+                                           "into several scenes",
+                                           desc.frame_count, max_frame_count));
     if (desc.camera.placement.empty()) throw InputError(file, "the scene has no camera");
     validate_placement(desc.camera.placement, desc, file + ": camera");
     for (const TextureImage& image : desc.images)

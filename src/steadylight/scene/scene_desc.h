@@ -155,6 +155,10 @@ SceneDesc load_scene_desc(const std::string& path);
 /// "from the glTF keys, one every 1/39 s".
 std::string describe_fps_source(const SceneDesc& desc);
 
+/// The most frames a scene may have: every frame's transforms are checked, and frame lists are
+/// kept in memory.
+constexpr int max_frame_count = 1000000;
+
 /// Checks what no single loader can: indices in range, finite numbers, emitters with area,
 /// well-formed emission and intensity tracks.
 void validate(const SceneDesc& desc);

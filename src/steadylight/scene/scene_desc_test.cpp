@@ -245,6 +245,10 @@ TEST_F(SceneFiles, SegmentsSplitTheAnimationWhereTheFileSays) {
     EXPECT_EQ(scene.segment_of(9).first, 7);
 }
 
+TEST_F(SceneFiles, MoreFramesThanAnAnimationMayHaveAreAnError) {
+    expect_error(write_scene(floor_quad, R"(, "frames": {"count": 1000001})"), {"1000001 frames", "at most 1000000"});
+}
+
 TEST_F(SceneFiles, SegmentStartsMustIncreaseWithinTheAnimation) {
     expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [5, 3])"), {"/segments", "increase"});
     expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [12])"), {"/segments", "within"});
