@@ -54,9 +54,22 @@ std::string trim_newlines(std::string s) {
 /// tinygltf's image callback: decodes an embedded or external image (tinygltf reads the bytes,
 /// from the buffer view, the data URI or the file beside the glTF) into 8-bit RGBA. An image that
 /// is not PNG or JPEG (KTX2, WebP, a broken file) stays empty: textures using it are ignored, with
-/// a warning (gltf_materials.cpp). One too large to decode fails the load.
+/// a warning (gltf_materials.cpp). One too large to decode fails the load, as does one whose
+/// bufferView runs past its buffer: tinygltf checks the view's and the buffer's indices but not
+/// the range it hands over (found by fuzzing). `model` is the model being loaded.
 bool decode_gltf_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                       const unsigned char* bytes, int size, void*) {
+                       const unsigned char* bytes, int size, void* model) {
+    if (image->bufferView >= 0) {
+        const tinygltf::Model& loading = *static_cast<const tinygltf::Model*>(model);
+        const tinygltf::BufferView& view = loading.bufferViews.at(size_t(image->bufferView));
+        const size_t buffer_size = loading.buffers.at(size_t(view.buffer)).data.size();
+        if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
+            if (err)
+                *err += fmt::format("image {} \"{}\": bufferView {} runs past the end of buffer {}\n", index, image->name,
+                                    image->bufferView, view.buffer);
+            return false;
+        }
+    }
     DecodedImage decoded = decode_image(bytes, size > 0 ? size_t(size) : 0);
     if (decoded.too_large) {
         if (err) *err += fmt::format("image {} \"{}\": {}\n", index, image->uri, decoded.problem);
@@ -78,8 +91,8 @@ tinygltf::Model load_model(const std::string& path) {
                          "unknown glTF file extension \"" + ext + "\" (expected .gltf or .glb)");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path, "file not found");
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(decode_gltf_image, nullptr);
     tinygltf::Model model;
+    loader.SetImageLoader(decode_gltf_image, &model);
     std::string err, warn;
     const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                                   : loader.LoadASCIIFromFile(&model, &err, &warn, path);

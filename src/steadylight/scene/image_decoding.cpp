@@ -9,6 +9,8 @@
 #include <climits>
 #include <csetjmp>
 #include <cstdio>
+#include <cstring>
+#include <vector>
 
 #include <fmt/format.h>
 #include <jpeglib.h>
@@ -44,7 +46,34 @@ bool fits_the_limits(int64_t width, int64_t height, DecodedImage& image) {
     return false;
 }
 
+/// The PNG without its empty IDAT chunks, when it has any, else empty: from an empty first IDAT
+/// the stb_image of Debian 12 copies zero bytes to a null pointer (undefined behaviour, found by
+/// fuzzing). The chunks' CRCs stay valid; stb_image does not check them anyway.
+std::vector<unsigned char> without_empty_idat_chunks(const unsigned char* bytes, size_t size) {
+    constexpr size_t signature = 8, chunk_overhead = 12;  // length, type, CRC
+    const auto is_empty_idat = [&](size_t at) {
+        return at + chunk_overhead <= size && bytes[at] == 0 && bytes[at + 1] == 0 && bytes[at + 2] == 0 &&
+               bytes[at + 3] == 0 && std::memcmp(bytes + at + 4, "IDAT", 4) == 0;
+    };
+    std::vector<unsigned char> kept;
+    size_t at = signature, copied = 0;
+    while (at + chunk_overhead <= size) {
+        const size_t length = size_t(bytes[at]) << 24 | size_t(bytes[at + 1]) << 16 | size_t(bytes[at + 2]) << 8 |
+                              bytes[at + 3];
+        if (is_empty_idat(at)) {
+            kept.insert(kept.end(), bytes + copied, bytes + at);
+            copied = at + chunk_overhead;
+        }
+        if (length > size - at - chunk_overhead) break;
+        at += chunk_overhead + length;
+    }
+    if (copied > 0) kept.insert(kept.end(), bytes + copied, bytes + size);
+    return kept;
+}
+
 DecodedImage decode_png(const unsigned char* bytes, size_t size) {
+    if (const std::vector<unsigned char> kept = without_empty_idat_chunks(bytes, size); !kept.empty())
+        return decode_png(kept.data(), kept.size());
     DecodedImage image;
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, int(size), &width, &height, &channels)) {

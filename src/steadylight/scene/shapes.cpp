@@ -1,7 +1,11 @@
 #include "steadylight/scene/shapes.h"
 
 #include <cmath>
+#include <fstream>
+#include <limits>
+#include <string_view>
 
+#include <fmt/format.h>
 #include <tiny_obj_loader.h>
 
 #include "steadylight/base/error.h"
@@ -63,12 +67,44 @@ TriangleMesh make_box(Vec3 center, Vec3 size) {
     return mesh;
 }
 
+namespace {
+
+/// The OBJ file with only the statements a mesh is made of (v, vt, vn, f, o, g, s): the others
+/// (materials, vertex weights, lines, points, curves) become empty lines, so that tinyobjloader
+/// neither reads material files nor meets what it mishandles (a `vw` weight of 1e999 converted
+/// to int, found by fuzzing), and its messages keep their line numbers.
+std::string mesh_statements_of_obj(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "cannot open");
+    std::string text, line;
+    while (std::getline(in, line)) {
+        const size_t start = line.find_first_not_of(" \t");
+        const std::string_view rest = start == std::string::npos ? std::string_view() : std::string_view(line).substr(start);
+        const std::string_view keyword = rest.substr(0, rest.find_first_of(" \t\r"));
+        if (keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f" || keyword == "o" || keyword == "g" ||
+            keyword == "s")
+            text += line;
+        text += '\n';
+    }
+    if (in.bad()) throw InputError(path, "cannot read");
+    return text;
+}
+
+/// A coordinate of the file (parsed as double) as a float; an error beyond float's range.
+float obj_coordinate(double value, const std::string& path) {
+    if (!(std::abs(value) <= double(std::numeric_limits<float>::max())))
+        throw InputError(path, fmt::format("coordinate {} is not a finite float", value));
+    return float(value);
+}
+
+}  // namespace
+
 TriangleMesh load_obj_mesh(const std::string& path) {
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path, config))
+    if (!reader.ParseFromString(mesh_statements_of_obj(path), "", config))
         throw InputError(path, reader.Error().empty() ? "cannot read OBJ file" : reader.Error());
 
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
@@ -81,14 +117,16 @@ TriangleMesh load_obj_mesh(const std::string& path) {
             if (index.vertex_index < 0 || 3 * v + 2 >= attrib.vertices.size())
                 throw InputError(path, "face refers to a missing vertex");
             mesh.indices.push_back(int(mesh.positions.size()));
-            mesh.positions.push_back({attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
-                                      attrib.vertices[3 * v + 2]});
+            mesh.positions.push_back({obj_coordinate(attrib.vertices[3 * v], path),
+                                      obj_coordinate(attrib.vertices[3 * v + 1], path),
+                                      obj_coordinate(attrib.vertices[3 * v + 2], path)});
             const size_t n = size_t(index.normal_index);
             if (index.normal_index < 0 || 3 * n + 2 >= attrib.normals.size()) {
                 all_normals = false;
                 continue;
             }
-            normals.push_back({attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]});
+            normals.push_back({obj_coordinate(attrib.normals[3 * n], path), obj_coordinate(attrib.normals[3 * n + 1], path),
+                               obj_coordinate(attrib.normals[3 * n + 2], path)});
         }
     }
     if (mesh.indices.empty()) throw InputError(path, "OBJ file has no faces");
