@@ -25,7 +25,9 @@ sanitized_suite() {
   shift
   local dir=build-${sanitizers//,/-}
   local flags="-fsanitize=$sanitizers -fno-omit-frame-pointer -fno-sanitize-recover=all"
+  # -O1 and line tables only: half the build time of -O2 -g, and stack traces keep file and line.
   local options=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS=$flags"
+                 "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
                  "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=$sanitizers" -DSTEADYLIGHT_BUILD_BENCHMARKS=OFF)
   if [[ $sanitizers == *thread* ]]; then
     local tbb
