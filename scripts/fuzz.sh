@@ -12,8 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
-bash scripts/setup.sh
-command -v clang++ >/dev/null || { echo "fuzz: installing clang"; apt-get install -y -qq clang >/dev/null; }
+bash scripts/setup.sh clang
 dir=build-fuzz
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g -O1"
 if [ ! -f $dir/CMakeCache.txt ]; then

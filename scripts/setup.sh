@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages steadylight needs to build, test and benchmark.
 # Idempotent and non-interactive: it installs only what is missing, so a second run is quick.
+# Extra packages a script needs only for itself can be named as arguments (fuzz.sh: clang).
+#   bash scripts/setup.sh [PACKAGE...]
 set -euo pipefail
 
 packages=(
@@ -10,6 +12,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   ffmpeg   # optional at run time: only `render --video` and its test (skipped without it) use it
   slurm-wlm munge   # the farm test's one-node Slurm cluster (tests/farm/); `submit` needs sbatch only
+  "$@"
 )
 
 missing=()

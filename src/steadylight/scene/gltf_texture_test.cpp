@@ -9,6 +9,7 @@
 #include <string>
 
 #include "steadylight/base/error.h"
+#include "steadylight/output/image_writer.h"
 #include "steadylight/scene/gltf_loader.h"
 #include "steadylight/scene/image_decoding.h"
 #include "support/input_error.h"
@@ -167,6 +168,16 @@ TEST_F(GltfTexture, UndecodableImageLeavesItsTexturesOut) {
     ASSERT_EQ(desc.images.size(), 2u);  // the indices of the others stay as they were
     EXPECT_FALSE(desc.materials.at(0).base_color_texture.is_set());
     EXPECT_EQ(desc.materials.at(0).normal_texture.image, 1);
+}
+
+// A chunk whose length runs past the end of the file (a truncated PNG) is refused before
+// stb_image allocates that length (a fuzzing finding: 1.4 GB for a 152-byte file).
+TEST(ImageDecoding, PngChunkRunningPastTheEndIsADamagedImage) {
+    std::vector<unsigned char> bytes = encode_png(Image(16, 16));
+    EXPECT_TRUE(decode_image(bytes.data(), bytes.size()).problem.empty());
+    bytes.resize(bytes.size() - 20);  // into the IDAT chunk
+    EXPECT_EQ(decode_image(bytes.data(), bytes.size()).problem,
+              "a damaged PNG image (its IDAT chunk runs past the end of the file)");
 }
 
 TEST_F(GltfTexture, ImageTooLargeToDecodeIsAnInputErrorNamingIt) {

@@ -6,10 +6,12 @@
 // from outside, while libjpeg-turbo is maintained and fuzzed upstream (OSS-Fuzz).
 #include "steadylight/scene/image_decoding.h"
 
+#include <cctype>
 #include <climits>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -46,35 +48,49 @@ bool fits_the_limits(int64_t width, int64_t height, DecodedImage& image) {
     return false;
 }
 
-/// The PNG without its empty IDAT chunks, when it has any, else empty: from an empty first IDAT
-/// the stb_image of Debian 12 copies zero bytes to a null pointer (undefined behaviour, found by
-/// fuzzing). The chunks' CRCs stay valid; stb_image does not check them anyway.
-std::vector<unsigned char> without_empty_idat_chunks(const unsigned char* bytes, size_t size) {
+/// What decode_png fixes or refuses before stb_image reads a PNG, from a walk over its chunks.
+struct PngChunks {
+    /// The PNG without its empty IDAT chunks, when it has any, else empty: from an empty first
+    /// IDAT the stb_image of Debian 12 copies zero bytes to a null pointer (undefined behaviour,
+    /// found by fuzzing). The chunks' CRCs stay valid; stb_image does not check them anyway.
+    std::vector<unsigned char> without_empty_idat;
+    /// The type of a chunk before IEND whose length runs past the end of the file, if any:
+    /// stb_image allocates an IDAT's length (up to 4 GB) before it finds the data missing (a
+    /// 152-byte file took a second; found by fuzzing).
+    std::string truncated_chunk;
+};
+
+PngChunks walk_png_chunks(const unsigned char* bytes, size_t size) {
     constexpr size_t signature = 8, chunk_overhead = 12;  // length, type, CRC
-    const auto is_empty_idat = [&](size_t at) {
-        return at + chunk_overhead <= size && bytes[at] == 0 && bytes[at + 1] == 0 && bytes[at + 2] == 0 &&
-               bytes[at + 3] == 0 && std::memcmp(bytes + at + 4, "IDAT", 4) == 0;
-    };
-    std::vector<unsigned char> kept;
+    PngChunks chunks;
     size_t at = signature, copied = 0;
     while (at + chunk_overhead <= size) {
         const size_t length = size_t(bytes[at]) << 24 | size_t(bytes[at + 1]) << 16 | size_t(bytes[at + 2]) << 8 |
                               bytes[at + 3];
-        if (is_empty_idat(at)) {
-            kept.insert(kept.end(), bytes + copied, bytes + at);
+        const unsigned char* type = bytes + at + 4;
+        if (std::memcmp(type, "IEND", 4) == 0) break;
+        if (length > size - at - chunk_overhead) {
+            for (int i = 0; i < 4; ++i) chunks.truncated_chunk += std::isalpha(type[i]) ? char(type[i]) : '?';
+            break;
+        }
+        if (length == 0 && std::memcmp(type, "IDAT", 4) == 0) {
+            chunks.without_empty_idat.insert(chunks.without_empty_idat.end(), bytes + copied, bytes + at);
             copied = at + chunk_overhead;
         }
-        if (length > size - at - chunk_overhead) break;
         at += chunk_overhead + length;
     }
-    if (copied > 0) kept.insert(kept.end(), bytes + copied, bytes + size);
-    return kept;
+    if (copied > 0) chunks.without_empty_idat.insert(chunks.without_empty_idat.end(), bytes + copied, bytes + size);
+    return chunks;
 }
 
 DecodedImage decode_png(const unsigned char* bytes, size_t size) {
-    if (const std::vector<unsigned char> kept = without_empty_idat_chunks(bytes, size); !kept.empty())
-        return decode_png(kept.data(), kept.size());
     DecodedImage image;
+    const PngChunks chunks = walk_png_chunks(bytes, size);
+    if (!chunks.truncated_chunk.empty()) {
+        image.problem = fmt::format("a damaged PNG image (its {} chunk runs past the end of the file)", chunks.truncated_chunk);
+        return image;
+    }
+    if (!chunks.without_empty_idat.empty()) return decode_png(chunks.without_empty_idat.data(), chunks.without_empty_idat.size());
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, int(size), &width, &height, &channels)) {
         image.problem = fmt::format("not a PNG or JPEG image ({})", stbi_failure_reason());

@@ -1,7 +1,9 @@
 #include "steadylight/scene/shapes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string_view>
 
@@ -72,21 +74,27 @@ namespace {
 /// The OBJ file with only the statements a mesh is made of (v, vt, vn, f, o, g, s): the others
 /// (materials, vertex weights, lines, points, curves) become empty lines, so that tinyobjloader
 /// neither reads material files nor meets what it mishandles (a `vw` weight of 1e999 converted
-/// to int, found by fuzzing), and its messages keep their line numbers.
+/// to int, found by fuzzing), and its messages keep their line numbers. Lines end as
+/// tinyobjloader ends them: at "\n", "\r\n" or a lone "\r" (a `vw` after a lone "\r" reached
+/// it, found by fuzzing too).
 std::string mesh_statements_of_obj(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, "cannot open");
-    std::string text, line;
-    while (std::getline(in, line)) {
+    const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path, "cannot read");
+    std::string text;
+    for (size_t begin = 0; begin < file.size();) {
+        const size_t end = std::min(file.find_first_of("\r\n", begin), file.size());
+        const std::string_view line = std::string_view(file).substr(begin, end - begin);
         const size_t start = line.find_first_not_of(" \t");
-        const std::string_view rest = start == std::string::npos ? std::string_view() : std::string_view(line).substr(start);
-        const std::string_view keyword = rest.substr(0, rest.find_first_of(" \t\r"));
+        const std::string_view rest = start == std::string::npos ? std::string_view() : line.substr(start);
+        const std::string_view keyword = rest.substr(0, rest.find_first_of(" \t"));
         if (keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f" || keyword == "o" || keyword == "g" ||
             keyword == "s")
             text += line;
         text += '\n';
+        begin = end + (file.compare(end, 2, "\r\n") == 0 ? 2 : 1);
     }
-    if (in.bad()) throw InputError(path, "cannot read");
     return text;
 }
 
