@@ -8,7 +8,10 @@
 //   mean signed change against the reference's over the far pixels, the method's own mean change
 //   there (free of the references' noise), and the references' own noise floor (the middle pair against the same pair with another seed).
 // Frames whose reference is missing are skipped and said so. Prints, asserts nothing.
-// Run: build/quality_bench [--scenes table,corridor] [--methods photon,localized,frozen] [--pairs 0]
+// --save DIR also writes each still frame's image (<scene>_<frame>_<method>.exr, float) and the
+// pixels the figures leave out (<scene>_<frame>_left_out.exr, 1 where left out), to look at
+// where the error sits.
+// Run: build/quality_bench [--scenes table,corridor] [--methods photon,localized,frozen] [--pairs 0] [--save DIR]
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -31,7 +34,11 @@ struct Options {
     std::vector<std::string> scenes{"table", "corridor", "mirror_room", "glass_move", "flythrough", "ball", "cornell"};
     std::vector<Method> methods{Method::photon, Method::localized, Method::frozen};
     bool pairs = true;
+    std::string save_dir;  // empty: nothing written
 };
+
+constexpr const char* usage =
+    "usage: quality_bench [--scenes a,b] [--methods photon,localized,frozen] [--pairs 0|1] [--save DIR]\n";
 
 std::vector<std::string> split(const char* text) {
     std::vector<std::string> parts;
@@ -42,12 +49,23 @@ std::vector<std::string> split(const char* text) {
 
 Options parse(int argc, char** argv) {
     Options o;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--scenes")) o.scenes = split(argv[i + 1]);
-        if (!std::strcmp(argv[i], "--pairs")) o.pairs = std::atoi(argv[i + 1]) != 0;
-        if (!std::strcmp(argv[i], "--methods")) {
+    for (int i = 1; i < argc; i += 2) {
+        if (i + 1 == argc || argv[i][0] != '-' || !std::strcmp(argv[i], "--help")) {
+            std::fputs(usage, std::strcmp(argv[i], "--help") ? stderr : stdout);
+            std::exit(std::strcmp(argv[i], "--help") ? 2 : 0);
+        }
+        if (!std::strcmp(argv[i], "--scenes")) {
+            o.scenes = split(argv[i + 1]);
+        } else if (!std::strcmp(argv[i], "--pairs")) {
+            o.pairs = std::atoi(argv[i + 1]) != 0;
+        } else if (!std::strcmp(argv[i], "--save")) {
+            o.save_dir = argv[i + 1];
+        } else if (!std::strcmp(argv[i], "--methods")) {
             o.methods.clear();
             for (const std::string& name : split(argv[i + 1])) o.methods.push_back(parse_method(name, "--methods"));
+        } else {
+            std::fprintf(stderr, "quality_bench: unknown option %s\n%s", argv[i], usage);
+            std::exit(2);
         }
     }
     return o;
@@ -116,8 +134,19 @@ void print_still_figures(SceneRenderer& renderer, const std::string& name, const
             continue;
         }
         const PixelMask emitters = renderer.emitters(frame);
+        const auto save = [&](const std::string& what, const Image& image) {
+            if (options.save_dir.empty()) return;
+            std::filesystem::create_directories(options.save_dir);
+            char file[256];
+            std::snprintf(file, sizeof file, "%s_%04d_%s.exr", name.c_str(), frame, what.c_str());
+            write_exr((std::filesystem::path(options.save_dir) / file).string(), image);
+        };
+        Image left_out(reference->width, reference->height);
+        for (size_t i = 0; i < emitters.size(); ++i) left_out.pixels[i] = emitters[i] ? Rgb{1, 1, 1} : Rgb{};
+        save("left_out", left_out);
         for (const Method method : options.methods) {
             const auto [image, seconds] = renderer.render(method, frame);
+            save(std::string(method_info(method).name), image);
             const ImageError e = image_error(image, *reference, emitters);
             std::printf("%-12s frame %2d %-10s per pixel %6.2f%%  4x4 %6.2f%%  mean ratio %.4f  %6.2f s\n", name.c_str(),
                         frame, std::string(method_info(method).name).c_str(), 100 * e.pixel_rmse, 100 * e.block_rmse,

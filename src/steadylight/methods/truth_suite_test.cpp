@@ -22,8 +22,9 @@ const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 /// methods (16 camera rays per pixel). The per-pixel figure is mostly their noise: measured
 /// about 4% on the diffuse scenes and TABLE (9% before caustic photons were aimed and sharp
 /// caustics averaged over the pixel), 8% with the corridor's small lights (direct light noise),
-/// 7% with a moving glass ball (18% before) and 14% with a glossy floor that sees a mirror (18%
-/// while glossy surfaces the camera sees were followed along one bounce, not four); 4x4 blocks
+/// 7% with a moving glass ball (18% before) and 9.2-9.5% with a glossy floor that sees a mirror
+/// (14% while the light's image in the mirror was left to the floor's sampled bounces, 18% while
+/// they were one, not four); 4x4 blocks
 /// show bias (0.9-1.6% on the diffuse scenes and TABLE since the density estimate was corrected
 /// on 2026-12-01, 2.2-4.6% on the noisy ones). The
 /// tolerances are those figures with a margin.
@@ -36,7 +37,7 @@ struct SceneTolerance {
 
 constexpr SceneTolerance tolerances[] = {
     {"cornell", 0.06, 0.025},     {"ball", 0.06, 0.025},       {"table", 0.06, 0.025},
-    {"corridor", 0.21, 0.04},     {"mirror_room", 0.18, 0.065}, {"flythrough", 0.06, 0.025},
+    {"corridor", 0.21, 0.04},     {"mirror_room", 0.12, 0.065}, {"flythrough", 0.06, 0.025},
     {"glass_move", 0.26, 0.06},   {"switch_room", 0.14, 0.035, 15},
     // Until the photons trapped in its closed lamp housings stopped leaking into the estimates
     // beside them, the photon methods were 2.3-2.4% too bright here (docs/truth-suite.md, "Light

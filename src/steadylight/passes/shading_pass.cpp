@@ -1,5 +1,7 @@
 #include "steadylight/passes/shading_pass.h"
 
+#include <algorithm>
+
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/rng.h"
 #include "steadylight/base/sampling.h"
@@ -19,6 +21,11 @@ constexpr int glossy_camera_bounces = 4;
 
 /// The lighting along a camera ray split the way the EXR's layers are.
 using Components = PixelSums;
+
+/// Whether a ray counts the emission it meets: not where the surface it left sampled the
+/// lights (a glossy bounce), nor after one reflection in a flat mirror from there, whose
+/// light the glossy point sampled too (mirror_images.h).
+enum class Emission { counted, sampled, sampled_in_mirror };
 
 /// Which of a pixel's light samples a camera ray takes: sample k of this ray is number
 /// first + k of `count`, stratified over the pixel (base/sampling.h stratified_2d), so the
@@ -64,14 +71,17 @@ public:
         : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect), m_reflected(reflected),
           m_visibility(visibility) {}
 
-    Components shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel, const LightStrata& strata,
+    Components shade(const Ray& ray, int depth, Emission emission, const PixelSample& pixel, const LightStrata& strata,
                      Pcg32& rng) const;
     double caustic_cpu_s() const { return double(m_caustic_ns) * 1e-9; }
 
 private:
-    Components shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, bool count_emission,
+    Components shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, Emission emission,
                          const PixelSample& pixel, const LightStrata& strata, Pcg32& rng) const;
     Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata) const;
+    Rgb light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
+                         PixelTrace* trace) const;
+    bool is_flat_mirror(int object) const;
     Rgb trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const;
     void shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
                        const PixelSample& pixel, const LightStrata& strata, Components& c) const;
@@ -101,6 +111,46 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
         sum += f * light->Li * (std::abs(wi.z) / light->pdf);
     }
     return sum / float(m_settings.direct_samples);
+}
+
+/// Light reaching glossy point `sp` by one reflection in a flat static mirror (mirror_images.h):
+/// the lights sampled as seen from the point's mirror image, with direct_light's strata.
+Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+                             const LightStrata& strata, PixelTrace* trace) const {
+    Rgb sum;
+    for (const MirrorPlane& mirror : m_context.mirrors) {
+        const float side = dot(sp.p - mirror.point, mirror.normal);
+        if (std::abs(side) <= ray_epsilon(sp.p)) continue;
+        const auto mirrored = [&](Vec3 v) { return v - mirror.normal * (2 * dot(v, mirror.normal)); };
+        const Vec3 image = sp.p - mirror.normal * (2 * side);
+        for (int s = 0; s < m_settings.direct_samples; ++s) {
+            const std::optional<LightSample> light = m_context.lights.sample_reusing(
+                image, mirrored(sp.ns), stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift));
+            // A light behind the mirror's plane has no image on this side.
+            if (!light || dot(light->p - mirror.point, mirror.normal) * side <= 0) continue;
+            const Vec3 towards_image = mirrored(light->wi);
+            const Vec3 wi = frame.to_local(towards_image);
+            const Rgb f = bsdf.eval(wo, wi);
+            const float t_plane = side / -dot(towards_image, mirror.normal);
+            if (is_black(f) || !(t_plane > 0)) continue;
+            // The path's reflection lies on the plane: the mirror must be the first surface there.
+            if (trace) trace->add_point(sp.p + towards_image * t_plane);
+            const Ray to_mirror = spawn_ray(sp.p, sp.ng, towards_image);
+            const std::optional<Hit> hit = m_context.tracer.intersect(to_mirror, m_visibility);
+            if (!hit || hit->object != mirror.object) continue;
+            const SurfacePoint on_mirror = make_surface_point(m_context.scene, m_context.frame, to_mirror, *hit);
+            const std::optional<Bounce> reflected =
+                sample_bounce(*bsdf_at(m_context, on_mirror), on_mirror, towards_image, {}, 0, TransportMode::radiance);
+            if (!reflected || m_context.tracer.occluded(spawn_ray_to(on_mirror.p, on_mirror.ng, light->p), m_visibility)) continue;
+            sum += f * reflected->sample.weight * light->Li * (std::abs(wi.z) / light->pdf);
+        }
+    }
+    return sum / float(m_settings.direct_samples);
+}
+
+bool Shader::is_flat_mirror(int object) const {
+    return std::any_of(m_context.mirrors.begin(), m_context.mirrors.end(),
+                       [object](const MirrorPlane& mirror) { return mirror.object == object; });
 }
 
 void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
@@ -139,14 +189,14 @@ Rgb Shader::trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray&
     return bounce->sample.weight * m_reflected(bounce->ray);
 }
 
-Components Shader::shade(const Ray& ray, int depth, bool count_emission, const PixelSample& pixel,
+Components Shader::shade(const Ray& ray, int depth, Emission emission, const PixelSample& pixel,
                          const LightStrata& strata, Pcg32& rng) const {
     const std::optional<Hit> hit = m_context.tracer.intersect(ray, m_visibility);
     if (pixel.trace && depth > 0) pixel.trace->flags |= hit ? PixelTrace::chain : PixelTrace::chain | PixelTrace::open_chain;
     if (!hit) return {};
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
     if (pixel.trace) pixel.trace->add_point(surface.p);
-    Components c = shade_hit(ray, *hit, surface, depth, count_emission, pixel, strata, rng);
+    Components c = shade_hit(ray, *hit, surface, depth, emission, pixel, strata, rng);
     // Light from a hit inside absorbing glass crossed its volume (the AOV layers are not light).
     const Rgb absorbed = volume_transmittance(m_context, surface, ray.d, hit->t);
     if (absorbed != Rgb{1, 1, 1})
@@ -155,13 +205,13 @@ Components Shader::shade(const Ray& ray, int depth, bool count_emission, const P
 }
 
 Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth,
-                             bool count_emission, const PixelSample& pixel, const LightStrata& strata,
+                             Emission emission, const PixelSample& pixel, const LightStrata& strata,
                              Pcg32& rng) const {
     Components c;
     // An emitter seen by the camera is direct light (as bright as it is at this frame); seen
     // through a mirror the caller files it under specular.
     const Rgb Le = m_context.frame.emission[size_t(surface.object)];
-    if (count_emission && !pixel.skip_direct && !is_black(Le)) c.direct += emitted_radiance_at(m_context, surface, -ray.d);
+    if (emission == Emission::counted && !pixel.skip_direct && !is_black(Le)) c.direct += emitted_radiance_at(m_context, surface, -ray.d);
     const SurfacePoint sp = face_towards(surface, ray.d);
     const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
     const Bsdf& bsdf = *surface_bsdf;
@@ -185,17 +235,23 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     // indirect light (emission is not counted twice). Mirrors and glass see emitters directly.
     // The BSDF is evaluated in the frame of the surface's own normals, as sample_bounce samples
     // it: rough glass tells inside from outside by them (the reflective BSDFs are two-sided).
+    // So do the lights' images in flat mirrors.
     if (!bsdf.is_delta() && !pixel.skip_direct) {
         const Frame own = Frame::from_normal(surface.nm);
         c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata);
+        c.direct += light_in_mirrors(sp, own, bsdf, own.to_local(-ray.d), strata, pixel.trace);
     }
     if (depth >= m_settings.max_specular_depth) return c;
+    // A flat mirror reached by a glossy bounce reflects light that the glossy point sampled.
+    const Emission delta_emission =
+        emission == Emission::sampled && is_flat_mirror(surface.object) ? Emission::sampled_in_mirror : Emission::counted;
     // What the bounce sees keeps this camera ray's light strata: each camera ray still reaches
     // at most one diffuse point along each branch.
     const auto follow = [&](const Bounce& bounce, float share, bool minor) {
         PixelSample branch = pixel;
         branch.minor_branch = pixel.minor_branch || minor;
-        c.specular += bounce.sample.weight * share * shade(bounce.ray, depth + 1, bounce.sample.is_delta, branch, strata, rng).sum();
+        const Emission next = bounce.sample.is_delta ? delta_emission : Emission::sampled;
+        c.specular += bounce.sample.weight * share * shade(bounce.ray, depth + 1, next, branch, strata, rng).sum();
     };
     const float u_lobe = rng.next_float();
     const Vec2 u = rng.next_vec2();
@@ -290,7 +346,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                         const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
                         Pcg32 path = pixel_stream(camera, x, y, PixelStream::path, s);
                         pixel.sample = s;
-                        const Components c = shader.shade(ray, 0, true, pixel, ray_strata, path);
+                        const Components c = shader.shade(ray, 0, Emission::counted, pixel, ray_strata, path);
                         if (!is_finite(c.sum())) continue;
                         sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
                         for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];

@@ -21,7 +21,8 @@ Bsdfs make_bsdfs(const Scene& scene) {
 PlacedFrame::PlacedFrame(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs, int frame)
     : m_state(scene.evaluate(frame)),
       m_lights(scene, place(tracer, m_state)),
-      m_context{scene, m_state, tracer, m_lights, bsdfs} {}
+      m_mirrors(flat_mirrors(scene, m_state)),
+      m_context{scene, m_state, tracer, m_lights, bsdfs, m_mirrors} {}
 
 PreparedFrame::PreparedFrame(const Scene& scene, int frame)
     : m_tracer(scene, scene.evaluate(frame)), m_bsdfs(make_bsdfs(scene)), m_placed(scene, m_tracer, m_bsdfs, frame) {}

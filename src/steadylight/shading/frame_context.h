@@ -9,6 +9,7 @@
 #include "steadylight/scene/scene.h"
 #include "steadylight/shading/bsdf.h"
 #include "steadylight/shading/light.h"
+#include "steadylight/shading/mirror_images.h"
 #include "steadylight/trace/ray_tracer.h"
 
 namespace steadylight {
@@ -21,6 +22,7 @@ struct FrameContext {
     const RayTracer& tracer;
     const LightSet& lights;
     const Bsdfs& bsdfs;
+    const std::vector<MirrorPlane>& mirrors;  // the flat static mirrors, whose images of the lights glossy surfaces sample
 
     const Bsdf& bsdf_of(int object) const { return *bsdfs[size_t(scene.object(object).material)]; }
 };
@@ -29,8 +31,8 @@ struct FrameContext {
 Bsdfs make_bsdfs(const Scene& scene);
 
 /// The scene at one frame: evaluates the frame, moves `tracer` there (only the dynamic objects
-/// move; an animation reuses one tracer) and finds the frame's lights. While it lives, `tracer`
-/// must stay at this frame. Never copied or moved: its context refers to its members.
+/// move; an animation reuses one tracer) and finds the frame's lights and flat mirrors. While it
+/// lives, `tracer` must stay at this frame. Never copied or moved: its context refers to its members.
 class PlacedFrame {
 public:
     PlacedFrame(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs, int frame);
@@ -42,6 +44,7 @@ public:
 private:
     FrameState m_state;
     LightSet m_lights;
+    std::vector<MirrorPlane> m_mirrors;
     FrameContext m_context;
 };
 
