@@ -5,8 +5,9 @@
 #       the AddressSanitizer and UndefinedBehaviorSanitizer build (build-address-undefined/) on
 #       every test but the slowest (slow_under_sanitizers below), so that the run stays near 20
 #       minutes on 2 cores.
-#   bash scripts/test.sh --sanitize LIST
-#       The whole suite in build-LIST/ with those sanitizers: address,undefined or thread. The
+#   bash scripts/test.sh --sanitize LIST [CTEST OPTION...]
+#       The whole suite (or what the ctest options select, e.g. -R 'cli\.kill_resume') in
+#       build-LIST/ with those sanitizers: address,undefined or thread. The
 #       thread build links oneTBB built with ThreadSanitizer (scripts/build_instrumented_tbb.sh)
 #       and reads tests/sanitizers/thread_suppressions.txt.
 set -euo pipefail
@@ -44,7 +45,9 @@ sanitized_suite() {
 }
 
 if [ "${1:-}" == --sanitize ]; then
-  sanitized_suite "${2:?--sanitize needs a list: address,undefined or thread}" --parallel "$(nproc)"
+  sanitizers=${2:?--sanitize needs a list: address,undefined or thread}
+  shift 2
+  sanitized_suite "$sanitizers" --parallel "$(nproc)" "$@"
   exit
 fi
 bash scripts/build.sh

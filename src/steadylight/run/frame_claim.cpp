@@ -68,7 +68,9 @@ std::optional<ClaimFile> read_claim(const std::string& path) {
     if (!in) return std::nullopt;
     try {
         const nlohmann::json json = nlohmann::json::parse(in);
-        return ClaimFile{json.at("host").get<std::string>(), json.at("pid").get<int>()};
+        const nlohmann::json& pid = json.at("pid");
+        if (!pid.is_number_integer() || pid.get<int64_t>() != int64_t(pid.get<int>())) return std::nullopt;
+        return ClaimFile{json.at("host").get<std::string>(), pid.get<int>()};
     } catch (const nlohmann::json::exception&) {
         return std::nullopt;
     }

@@ -38,8 +38,10 @@ std::string check_entry(const fs::path& out_dir, const nlohmann::json& entry) {
     if (!fs::is_regular_file(path, error)) return name + " is missing";
     const uintmax_t bytes = fs::file_size(path, error);
     if (error) return name + " is missing";
-    if (bytes != entry.at("bytes").get<uintmax_t>())
-        return fmt::format("{} has {} bytes, {} were written", name, bytes, entry.at("bytes").get<uintmax_t>());
+    // A count too large for an integer is read as a float, which must not be converted (a fuzzing finding).
+    const nlohmann::json& written = entry.at("bytes");
+    if (!written.is_number_unsigned()) return "its manifest gives " + name + " no byte count";
+    if (bytes != written.get<uintmax_t>()) return fmt::format("{} has {} bytes, {} were written", name, bytes, written.get<uintmax_t>());
     if (file_checksum(path) != entry.at("checksum").get<std::string>()) return name + " has changed since it was written";
     return "";
 }

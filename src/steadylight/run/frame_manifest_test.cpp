@@ -80,6 +80,16 @@ TEST_F(FrameManifest, ManifestNamingFilesOutsideTheFolderIsIncomplete) {
     }
 }
 
+TEST_F(FrameManifest, ByteCountThatIsNotACountIsIncomplete) {
+    // 1e42 is read as a float, whose conversion to an integer would be undefined (a fuzzing finding).
+    for (const nlohmann::json& bytes : {nlohmann::json(6.3e42), nlohmann::json(-1), nlohmann::json("1000")}) {
+        const nlohmann::json manifest = {{"settings_key", "key1"},
+                                         {"files", {{{"name", "s_0003.exr"}, {"bytes", bytes}, {"checksum", "0"}}}}};
+        write_text_file(frame_manifest_name(m_dir, "s", 3), manifest.dump());
+        EXPECT_EQ(check().problem, "its manifest gives s_0003.exr no byte count") << bytes;
+    }
+}
+
 TEST_F(FrameManifest, DamagedManifestIsIncomplete) {
     fs::resize_file(frame_manifest_name(m_dir, "s", 3), 20);
     EXPECT_FALSE(check().complete);

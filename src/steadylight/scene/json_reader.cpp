@@ -3,7 +3,9 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
+#include <limits>
 
 #include "steadylight/base/error.h"
 
@@ -60,7 +62,10 @@ int JsonObject::integer(const std::string& key, int fallback) const {
     if (!has(key)) return fallback;
     const json& value = at(key);
     if (!value.is_number_integer()) fail(key, "expected an integer, got " + value.dump());
-    return value.get<int>();
+    const int64_t wide = value.get<int64_t>();
+    if (wide < std::numeric_limits<int>::min() || wide > std::numeric_limits<int>::max())
+        fail(key, "expected an integer within +-2^31, got " + value.dump());
+    return int(wide);
 }
 
 bool JsonObject::boolean(const std::string& key, bool fallback) const {

@@ -196,6 +196,13 @@ TEST_F(SceneFiles, GlassIsSmoothByDefaultAndTakesRoughnessAndAbsorption) {
 
 TEST_F(SceneFiles, MissingFileIsAnError) { expect_error((m_dir / "nope.json").string(), {"nope.json", "cannot open"}); }
 
+// 2^32 + 2 frames would wrap to 2 in an int: refused, never read as another number.
+TEST_F(SceneFiles, IntegerBeyondIntIsAnError) {
+    expect_error(write("big.json", R"({"frames": {"count": 4294967298}, "camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+        "materials": {}, "objects": []})"),
+                 {"big.json:/frames/count", "expected an integer within"});
+}
+
 TEST_F(SceneFiles, SyntaxErrorNamesTheFile) { expect_error(write("bad.json", "{\"camera\": "), {"bad.json", "invalid JSON"}); }
 
 TEST_F(SceneFiles, NanIsAnError) {
