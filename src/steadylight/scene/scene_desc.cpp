@@ -183,7 +183,8 @@ Geometry parse_shape(const JsonObject& json) {
         geometry = Sphere{json.vec3("center", {}), radius};
     } else if (type == "mesh") {
         const std::string file = resolve_path(json, "file");
-        if (!fs::exists(file)) json.fail("file", "mesh file \"" + file + "\" not found");
+        std::error_code error;  // a name too long for the file system is "not found" too
+        if (!fs::exists(file, error)) json.fail("file", "mesh file \"" + file + "\" not found");
         geometry = load_obj_mesh(file);
     } else {
         json.fail("type", "unknown shape type \"" + type + "\" (quad, box, sphere, mesh)");

@@ -203,6 +203,15 @@ TEST_F(SceneFiles, IntegerBeyondIntIsAnError) {
                  {"big.json:/frames/count", "expected an integer within"});
 }
 
+// A name longer than the file system allows is not found, like any other (it made the standard
+// library throw past the loader: a fuzzing finding).
+TEST_F(SceneFiles, FileNameTooLongIsNotFound) {
+    const std::string name(5000, 'n');
+    expect_error(write("gltf.json", R"({"gltf": ")" + name + R"(.glb"})"), {"file not found"});
+    expect_error(write_scene(R"({"shape": {"type": "mesh", "file": ")" + name + R"(.obj"}, "material": "white"})"),
+                 {"not found"});
+}
+
 TEST_F(SceneFiles, SyntaxErrorNamesTheFile) { expect_error(write("bad.json", "{\"camera\": "), {"bad.json", "invalid JSON"}); }
 
 TEST_F(SceneFiles, NanIsAnError) {
