@@ -175,7 +175,13 @@ TEST_F(GltfTexture, UndecodableImageLeavesItsTexturesOut) {
 TEST(ImageDecoding, PngChunkRunningPastTheEndIsADamagedImage) {
     std::vector<unsigned char> bytes = encode_png(Image(16, 16));
     EXPECT_TRUE(decode_image(bytes.data(), bytes.size()).problem.empty());
+    const std::vector<unsigned char> whole = bytes;
     bytes.resize(bytes.size() - 20);  // into the IDAT chunk
+    EXPECT_EQ(decode_image(bytes.data(), bytes.size()).problem,
+              "a damaged PNG image (its IDAT chunk runs past the end of the file)");
+    // Only the length and type of a chunk after the header, which claims 2 GB.
+    bytes.assign(whole.begin(), whole.begin() + 33);
+    bytes.insert(bytes.end(), {0x7f, 0xff, 0xff, 0xff, 'I', 'D', 'A', 'T'});
     EXPECT_EQ(decode_image(bytes.data(), bytes.size()).problem,
               "a damaged PNG image (its IDAT chunk runs past the end of the file)");
 }

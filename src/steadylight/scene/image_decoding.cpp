@@ -61,15 +61,16 @@ struct PngChunks {
 };
 
 PngChunks walk_png_chunks(const unsigned char* bytes, size_t size) {
-    constexpr size_t signature = 8, chunk_overhead = 12;  // length, type, CRC
+    constexpr size_t signature = 8, header = 8, chunk_overhead = 12;  // length and type; and the CRC
     PngChunks chunks;
     size_t at = signature, copied = 0;
-    while (at + chunk_overhead <= size) {
+    while (at + header <= size) {
         const size_t length = size_t(bytes[at]) << 24 | size_t(bytes[at + 1]) << 16 | size_t(bytes[at + 2]) << 8 |
                               bytes[at + 3];
         const unsigned char* type = bytes + at + 4;
         if (std::memcmp(type, "IEND", 4) == 0) break;
-        if (length > size - at - chunk_overhead) {
+        // A chunk cut short anywhere, its CRC too (a 43-byte file whose last chunk header said 2 GB).
+        if (length + chunk_overhead > size - at) {
             for (int i = 0; i < 4; ++i) chunks.truncated_chunk += std::isalpha(type[i]) ? char(type[i]) : '?';
             break;
         }
