@@ -27,17 +27,19 @@ const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 /// they were one, not four); 4x4 blocks
 /// show bias (0.9-1.6% on the diffuse scenes and TABLE since the density estimate was corrected
 /// on 2026-12-01, 2.2-4.6% on the noisy ones). The
-/// tolerances are those figures with a margin.
+/// tolerances are those figures with a margin. The path tracer (64 samples) gets 2.5 times the
+/// per-pixel figure, mirror_room's its own (34% measured: its glossy floor's noise).
 struct SceneTolerance {
     const char* scene;
     double pixel_rmse, block_rmse;
     int frame = 0;          // the frame compared (its golden: <scene>_<frame:04>.exr)
     double mean_off = 0.02;  // |mean ratio - 1|
+    double path_pixel_rmse = 0;  // the path tracer's (64 samples per pixel); 0: 2.5 x pixel_rmse
 };
 
 constexpr SceneTolerance tolerances[] = {
     {"cornell", 0.06, 0.025},     {"ball", 0.06, 0.025},       {"table", 0.06, 0.025},
-    {"corridor", 0.21, 0.04},     {"mirror_room", 0.12, 0.065}, {"flythrough", 0.06, 0.025},
+    {"corridor", 0.21, 0.04},     {"mirror_room", 0.12, 0.065, 0, 0.02, 0.40}, {"flythrough", 0.06, 0.025},
     {"glass_move", 0.26, 0.06},   {"switch_room", 0.14, 0.035, 15},
     // Until the photons trapped in its closed lamp housings stopped leaking into the estimates
     // beside them, the photon methods were 2.3-2.4% too bright here (docs/truth-suite.md, "Light
@@ -141,7 +143,8 @@ TEST_P(TruthSuite, FrameAgreesWithTheReference) {
     std::printf("%s %d %s: per pixel %.4f, 4x4 blocks %.4f, mean ratio %.4f\n", c.scene(), c.tolerance.frame,
                 std::string(method_info(c.method).name).c_str(), e.pixel_rmse, e.block_rmse, e.mean_ratio);
     const bool path = c.method == Method::path;
-    EXPECT_LT(e.pixel_rmse, c.tolerance.pixel_rmse * (path ? 2.5 : 1));
+    const double path_pixel_rmse = c.tolerance.path_pixel_rmse > 0 ? c.tolerance.path_pixel_rmse : 2.5 * c.tolerance.pixel_rmse;
+    EXPECT_LT(e.pixel_rmse, path ? path_pixel_rmse : c.tolerance.pixel_rmse);
     const bool frozen = c.method == Method::frozen;
     EXPECT_LT(e.block_rmse, c.tolerance.block_rmse * (path ? 2 : frozen ? 1.5 : 1));
     EXPECT_NEAR(e.mean_ratio, 1.0, frozen ? std::max(0.05, c.tolerance.mean_off) : c.tolerance.mean_off);
