@@ -146,15 +146,17 @@ Composition compose_main(const StoredPaths& paths, const std::vector<ChunkChange
 }
 
 /// The dynamic map in full tracing's order: per changed path, its negative photons (the static
-/// path's photons from the first dynamic ray on, direct hits left out, power negated), then
-/// its new indirect ones.
+/// path's photons from the first dynamic ray on, power negated, direct hits and caustic photons
+/// left out as the tracer leaves them out: a photon is caustic when the ray that brought it
+/// followed only specular bounces), then its new ones.
 std::vector<Photon> compose_dynamic(const StoredPaths& paths, const std::vector<ChunkChanges>& changes) {
     const std::vector<Photon>& base = paths.photons.photons();
     std::vector<Photon> dynamic;
     for (const ChunkChanges& chunk_changes : changes)
         for (const ChangedPath& changed : chunk_changes.paths) {
+            const PathSegment* rays = paths.segments.data() + paths.first_segment[changed.path];
             for (uint32_t i = kept_end(paths, changed); i < paths.first_photon[changed.path + 1]; ++i)
-                if (base[i].bounce > 0) {
+                if (base[i].bounce > 0 && !rays[base[i].bounce].specular_path) {
                     Photon negative = base[i];
                     negative.power = base[i].power * -1.0f;
                     dynamic.push_back(negative);

@@ -46,7 +46,9 @@ void PhotonTracer::store(const PhotonPath& path, const Photon& photon, PhotonOut
     // Negative photons belong to the dynamic map only; the others to their own map.
     if (!path.negative && (m_kind == MapKind::global || path.specular_path)) out.main.push_back(photon);
     // Direct hits stay out of the dynamic map: direct light is ray traced (paper §3.1, a b g).
-    if (out.dynamic && path.dynamic && !direct) out.dynamic->push_back(photon);
+    // So do caustic photons (every bounce before specular or glossy): the frame's caustic map
+    // holds their change already.
+    if (out.dynamic && path.dynamic && !direct && !path.specular_path) out.dynamic->push_back(photon);
 }
 
 void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
