@@ -62,10 +62,13 @@ int JsonObject::integer(const std::string& key, int fallback) const {
     if (!has(key)) return fallback;
     const json& value = at(key);
     if (!value.is_number_integer()) fail(key, "expected an integer, got " + value.dump());
-    const int64_t wide = value.get<int64_t>();
-    if (wide < std::numeric_limits<int>::min() || wide > std::numeric_limits<int>::max())
-        fail(key, "expected an integer within +-2^31, got " + value.dump());
-    return int(wide);
+    // Non-negative integers are unsigned in nlohmann::json: 2^64 - 1 read as int64_t would be -1.
+    const bool fits = value.is_number_unsigned()
+                          ? value.get<uint64_t>() <= uint64_t(std::numeric_limits<int>::max())
+                          : value.get<int64_t>() >= std::numeric_limits<int>::min() &&
+                                value.get<int64_t>() <= std::numeric_limits<int>::max();
+    if (!fits) fail(key, "expected an integer within +-2^31, got " + value.dump());
+    return value.get<int>();
 }
 
 bool JsonObject::boolean(const std::string& key, bool fallback) const {

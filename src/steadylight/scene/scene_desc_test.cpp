@@ -198,9 +198,10 @@ TEST_F(SceneFiles, MissingFileIsAnError) { expect_error((m_dir / "nope.json").st
 
 // 2^32 + 2 frames would wrap to 2 in an int: refused, never read as another number.
 TEST_F(SceneFiles, IntegerBeyondIntIsAnError) {
-    expect_error(write("big.json", R"({"frames": {"count": 4294967298}, "camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
-        "materials": {}, "objects": []})"),
-                 {"big.json:/frames/count", "expected an integer within"});
+    for (const char* count : {"4294967298", "18446744073709551615", "-4294967298"})
+        expect_error(write("big.json", std::string(R"({"frames": {"count": )") + count +
+                                           R"(}, "camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]}, "materials": {}, "objects": []})"),
+                     {"big.json:/frames/count", "expected an integer within"});
 }
 
 // A name longer than the file system allows is not found, like any other (it made the standard
