@@ -34,6 +34,8 @@ struct LightStrata {
     uint32_t first = 0;
     uint32_t count = 1;
     Vec2 shift;
+
+    Vec2 sample(int k) const { return stratified_2d(first + uint32_t(k), count, shift); }
 };
 
 /// The random-number streams of a pixel (docs/localized.md, "Random numbers per term"): one for
@@ -103,7 +105,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
         // remainder on, so each light's area is stratified too, not only the pixel's samples.
         // Lights are chosen by what they could give this point (no MIS here to agree with).
         const std::optional<LightSample> light =
-            m_context.lights.sample_reusing(sp.p, sp.ns, stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift));
+            m_context.lights.sample_reusing(sp.p, sp.ns, strata.sample(s));
         if (!light) continue;
         const Vec3 wi = frame.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
@@ -124,8 +126,7 @@ Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const B
         const auto mirrored = [&](Vec3 v) { return v - mirror.normal * (2 * dot(v, mirror.normal)); };
         const Vec3 image = sp.p - mirror.normal * (2 * side);
         for (int s = 0; s < m_settings.direct_samples; ++s) {
-            const std::optional<LightSample> light = m_context.lights.sample_reusing(
-                image, mirrored(sp.ns), stratified_2d(strata.first + uint32_t(s), strata.count, strata.shift));
+            const std::optional<LightSample> light = m_context.lights.sample_reusing(image, mirrored(sp.ns), strata.sample(s));
             // A light behind the mirror's plane has no image on this side.
             if (!light || dot(light->p - mirror.point, mirror.normal) * side <= 0) continue;
             const Vec3 towards_image = mirrored(light->wi);
