@@ -7,11 +7,19 @@
 //   over all pixels whose true change is small and "far" (where the light does not change), the
 //   mean signed change against the reference's over the far pixels, the method's own mean change
 //   there (free of the references' noise), and the references' own noise floor (the middle pair against the same pair with another seed).
+//   The still references' own per-pixel noise, where the middle frame's common-random-numbers
+//   reference exists with two seeds: RMSE(seed 0 - seed 1) / sqrt(2) is a 1024-sample frame's
+//   noise, half that a 4096-sample one's (noise falls as 1 / sqrt(samples)). A method's error
+//   against a noisy reference is sqrt(its own error^2 + the reference's noise^2), as the two are
+//   independent; "without the reference's noise" prints sqrt(error^2 - noise^2), an estimate of
+//   the method's own error against the truth (the middle frame's noise stands for frame 0's too).
 // Frames whose reference is missing are skipped and said so. Prints, asserts nothing.
 // --save DIR also writes each still frame's image (<scene>_<frame>_<method>.exr, float) and the
 // pixels the figures leave out (<scene>_<frame>_left_out.exr, 1 where left out), to look at
 // where the error sits.
 // Run: build/quality_bench [--scenes table,corridor] [--methods photon,localized,frozen] [--pairs 0] [--save DIR]
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -125,8 +133,29 @@ private:
     std::map<int, StaticSolution> m_solutions;  // by the segment's first frame
 };
 
+/// The 4096-sample still references' own noise per pixel and on blocks (relative RMSE), estimated
+/// from the middle frame's two 1024-sample references with different seeds; nothing where they
+/// are missing.
+std::optional<ImageError> reference_noise(SceneRenderer& renderer, const std::string& name) {
+    const int middle = renderer.scene().frame_count() / 2;
+    const std::optional<Image> seed0 = read_reference("crn", name, middle), seed1 = read_reference("crn_seed1", name, middle);
+    if (!seed0 || !seed1) return std::nullopt;
+    ImageError noise = image_error(*seed1, *seed0, renderer.emitters(middle));
+    const double to_one_4096_sample_frame = std::sqrt(0.5) * std::sqrt(1024.0 / 4096.0);
+    noise.pixel_rmse *= to_one_4096_sample_frame;
+    noise.block_rmse *= to_one_4096_sample_frame;
+    return noise;
+}
+
+/// sqrt(error^2 - noise^2): an error measured against a reference with independent noise, less it.
+double without_noise(double error, double noise) { return std::sqrt(std::max(0.0, error * error - noise * noise)); }
+
 void print_still_figures(SceneRenderer& renderer, const std::string& name, const Options& options) {
     const int frames = renderer.scene().frame_count();
+    const std::optional<ImageError> noise = reference_noise(renderer, name);
+    if (noise)
+        std::printf("%-12s reference's own noise  per pixel %6.2f%%  4x4 %6.2f%%  (two seeds of the middle frame)\n",
+                    name.c_str(), 100 * noise->pixel_rmse, 100 * noise->block_rmse);
     for (const int frame : frames > 1 ? std::vector<int>{0, frames / 2} : std::vector<int>{0}) {
         const std::optional<Image> reference = read_reference("", name, frame);
         if (!reference) {
@@ -148,9 +177,13 @@ void print_still_figures(SceneRenderer& renderer, const std::string& name, const
             const auto [image, seconds] = renderer.render(method, frame);
             save(std::string(method_info(method).name), image);
             const ImageError e = image_error(image, *reference, emitters);
-            std::printf("%-12s frame %2d %-10s per pixel %6.2f%%  4x4 %6.2f%%  mean ratio %.4f  %6.2f s\n", name.c_str(),
+            std::printf("%-12s frame %2d %-10s per pixel %6.2f%%  4x4 %6.2f%%  mean ratio %.4f  %6.2f s", name.c_str(),
                         frame, std::string(method_info(method).name).c_str(), 100 * e.pixel_rmse, 100 * e.block_rmse,
                         e.mean_ratio, seconds);
+            if (noise)
+                std::printf("  without the reference's noise %6.2f%% / %5.2f%%", 100 * without_noise(e.pixel_rmse, noise->pixel_rmse),
+                            100 * without_noise(e.block_rmse, noise->block_rmse));
+            std::printf("\n");
         }
     }
 }
