@@ -224,7 +224,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     const IrradianceCache corrected = timed_phase("L_t", stats.correction_s, [&] {
         return frozen ? IrradianceCache(photon.cache)
                       : corrected_cache(static_cache, photons.dynamic, localized.correction,
-                                        solution.correction_coverage->shares(context, static_cache, localized.correction),
+                                        solution.correction_coverage->probes(context, static_cache, localized.correction),
                                         &changed_records);
     });
     const IrradianceCache& transported = frozen ? static_cache : corrected;

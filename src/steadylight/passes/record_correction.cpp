@@ -2,6 +2,7 @@
 #include "steadylight/passes/record_correction.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "steadylight/base/check.h"
@@ -23,43 +24,71 @@ float kept_share(float detail, float sigma, const CorrectionSettings& settings) 
     return settings.signal_sigmas * (z - settings.noise_sigmas) / ((settings.signal_sigmas - settings.noise_sigmas) * z);
 }
 
+/// A disc with less of the kernel's weight on the record's surface than this is no estimate of
+/// that surface's change: on a small object (a 0.3 m ball) a 2 m disc holds the few photons of
+/// the object's top, divided by a share of a few per cent, and the corrections came out blotchy.
+constexpr float min_kernel_share = 0.25f;
+
+/// How far off the tangent plane a level's photons may lie: a quarter of its radius (a table
+/// top's coarse discs do not read the floor under it).
+float slab_half_width(float radius) { return radius / 4; }
+
 }  // namespace
 
-const std::vector<float>& CorrectionCoverage::shares(const FrameContext& context, const IrradianceCache& cache,
-                                                     const CorrectionSettings& settings) const {
+const std::vector<DiscProbes>& CorrectionCoverage::probes(const FrameContext& context, const IrradianceCache& cache,
+                                                          const CorrectionSettings& settings) const {
     std::call_once(m_once, [&] {
         const SurfaceCoverage coverage = surface_coverage(context, Visibility::static_only);
         const std::vector<IrradianceRecord>& records = cache.records();
         const int levels = settings.levels;
         m_levels = levels;
-        m_shares.resize(records.size() * size_t(levels));
+        m_probes.resize(records.size() * size_t(levels));
         parallel_for_chunks(long(records.size()), 16, [&](long begin, long end) {
             for (long i = begin; i < end; ++i)
                 for (int l = 0; l < levels; ++l) {
                     const size_t at = size_t(i) * size_t(levels) + size_t(l);
-                    // A disc barely on the surface is held at 1/16, what one probe gives.
-                    m_shares[at] = std::max(coverage.probes(records[size_t(i)].p, records[size_t(i)].n, level_radius(settings, l), at).share(),
-                                            1.0f / 16);
+                    const float r = level_radius(settings, l);
+                    // Probed as the photons are chosen: a surface within the slab counts, seen
+                    // from its top (a step lower than the slab, such as stripes proud of a wall,
+                    // does not hide the surface beyond).
+                    const float slab = slab_half_width(r);
+                    m_probes[at] = coverage.probes(records[size_t(i)].p, records[size_t(i)].n, r, slab, slab, at);
                 }
         });
     });
     SL_CHECK_EQ(m_levels, settings.levels);
-    return m_shares;
+    return m_probes;
 }
 
-Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings, const float* shares) {
-    const int levels = settings.levels;
-    SL_CHECK(levels >= 1 && levels <= max_correction_levels);
+float kernel_share(const DiscProbes& probes) {
+    // The kernel 1 - d^2/r^2 puts 3/4 of its weight inside d^2 = r^2/2 (the inner ring's cells)
+    // and 1/4 outside; each ring has DiscProbes::sectors equal cells.
+    static_assert(DiscProbes::rings == 2);
+    constexpr uint16_t inner_ring = (1u << DiscProbes::sectors) - 1;
+    const int inner = std::popcount(uint16_t(probes.reached & inner_ring));
+    const int outer = std::popcount(uint16_t(probes.reached & ~inner_ring));
+    return float(3 * inner + outer) / float(4 * DiscProbes::sectors);
+}
+
+Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings, const DiscProbes* probes) {
+    SL_CHECK(settings.levels >= 1 && settings.levels <= max_correction_levels);
+    // The levels up to the first whose disc lies less than min_kernel_share on the surface.
+    int levels = settings.levels;
+    if (probes) {
+        levels = 0;
+        while (levels < settings.levels && kernel_share(probes[levels]) >= min_kernel_share) ++levels;
+        if (levels == 0) return {};
+    }
     thread_local std::vector<Neighbour> found;
     dynamic.within(p, level_radius(settings, levels - 1), found);
     if (found.empty()) return {};
-    // Level l's kernel: (1 - d^2 / r_l^2) 2 / (pi r_l^2 share_l) inside r_l; it integrates to 1
-    // over the part of the disc on the surface.
-    float inverse_r2[max_correction_levels], scale[max_correction_levels];
+    // Level l's kernel: (1 - d^2 / r_l^2) 2 / (pi r_l^2 share_l) inside r_l, share_l its weight
+    // on the surface; it integrates to 1 over the part of the disc on the surface.
+    float radius[max_correction_levels], inverse_r2[max_correction_levels], scale[max_correction_levels];
     for (int l = 0; l < levels; ++l) {
-        const float r = level_radius(settings, l);
-        inverse_r2[l] = 1 / (r * r);
-        scale[l] = 2 / (pi * r * r * (shares ? shares[l] : 1.0f));
+        radius[l] = level_radius(settings, l);
+        inverse_r2[l] = 1 / (radius[l] * radius[l]);
+        scale[l] = 2 * inverse_r2[l] / (pi * (probes ? kernel_share(probes[l]) : 1.0f));
     }
     Rgb detail[max_correction_levels];
     float variance[max_correction_levels] = {};
@@ -67,12 +96,10 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
         const Photon& photon = dynamic.photons()[neighbour.index];
         if (!same_side(photon, n)) continue;
         const float y = luminance(photon.power);
-        // How far off the record's tangent plane: a disc's photons lie within a quarter of its
-        // radius of it (a table top's coarse discs do not read the floor under it).
         const float offset = std::abs(dot(photon.p - p, n));
         float coarser = 0;  // the next coarser level's kernel; 0 past the coarsest
         for (int l = levels - 1; l >= 0; --l) {
-            const bool in_disc = offset * offset * 16 <= 1 / inverse_r2[l];
+            const bool in_disc = offset <= slab_half_width(radius[l]);
             const float kernel = in_disc ? std::max(0.0f, 1 - neighbour.distance2 * inverse_r2[l]) * scale[l] : 0.0f;
             const float weight = kernel - coarser;
             detail[l] += photon.power * weight;
@@ -87,16 +114,16 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
 }
 
 IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
-                                const CorrectionSettings& settings, const std::vector<float>& shares,
+                                const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
                                 std::vector<uint8_t>* changed) {
     std::vector<IrradianceRecord> records = static_cache.records();
     if (changed) changed->assign(records.size(), 0);
     if (dynamic.size() > 0) {
-        SL_CHECK_EQ(shares.size(), records.size() * size_t(settings.levels));
+        SL_CHECK_EQ(probes.size(), records.size() * size_t(settings.levels));
         parallel_for_chunks(long(records.size()), 64, [&](long begin, long end) {
             for (long i = begin; i < end; ++i) {
                 IrradianceRecord& r = records[size_t(i)];
-                const Rgb delta = correction_at(dynamic, r.p, r.n, settings, &shares[size_t(i) * size_t(settings.levels)]);
+                const Rgb delta = correction_at(dynamic, r.p, r.n, settings, &probes[size_t(i) * size_t(settings.levels)]);
                 if (delta == Rgb{}) continue;  // the record as it is, bit for bit
                 const Rgb E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g),
                                std::max(0.0f, r.E.b + delta.b)};

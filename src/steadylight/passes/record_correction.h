@@ -17,9 +17,21 @@
 //   linearly in between (firm shrinkage, Gao & Bruce 1997): scale-free, continuous (a detail
 //   fades in rather than pops), and unbiased for clear signals. Far from the objects every
 //   detail is noise, the correction is exactly 0, and the record does not change at all;
-// - each level's kernel is divided by the share of its disc on the record's surface
-//   (surface_coverage.h), without which coarse discs reaching past a wall's edge read too few
-//   photons (the corridor's frames came out 0.4% bright).
+// - each level's kernel is divided by the share of its weight on the record's surface, probed
+//   once per segment (surface_coverage.h), without which coarse discs reaching past a wall's
+//   edge read too few photons (the corridor's frames came out 0.4% bright). The probes see the
+//   surface as the photons are chosen: any surface within the slab counts, seen from the slab's
+//   top, so that a step lower than the slab hides nothing beyond it. Probed from just above the
+//   surface, a record on a wall between stripes 2 cm proud of it found its disc stopped at the
+//   stripes' sides, yet read the photons on the stripes beyond, divided by that small share: up
+//   to 16 times (blender_glass's localized frames 1.8% dark, the stripes' change twice the true
+//   one). The share weighs the probes by the kernel (the inner ring, the half of the disc's area
+//   nearer the centre, holds 3/4 of the Epanechnikov weight): by area, a disc half a radius from
+//   an edge read 9% too much. Levels whose disc has less than a quarter of the kernel's weight
+//   on the surface are no estimate of its change (a 2 m disc on a 0.3 m ball: the few photons on
+//   its top divided by a share of a few per cent made blotches): a record uses its levels up to
+//   the first such one, and one whose finest disc is such is not corrected (a small object near
+//   the moving one takes L_y, by the influence there).
 #pragma once
 
 #include <memory>
@@ -33,30 +45,33 @@
 
 namespace steadylight {
 
-/// The share of each static record's discs (one per level) on its surface, from the static
-/// geometry alone, computed once on first use (thread-safe) and kept for every frame of the
+/// Which cells of each static record's discs (one per level) lie on its surface, from the static
+/// geometry alone, probed once on first use (thread-safe) and kept for every frame of the
 /// segment: a function of the segment, whichever frame asks first.
 class CorrectionCoverage {
 public:
-    /// Record i's share at level l is at [i * settings.levels + l].
-    const std::vector<float>& shares(const FrameContext& context, const IrradianceCache& cache,
-                                     const CorrectionSettings& settings) const;
+    /// Record i's probes at level l are at [i * settings.levels + l].
+    const std::vector<DiscProbes>& probes(const FrameContext& context, const IrradianceCache& cache,
+                                          const CorrectionSettings& settings) const;
 
 private:
     mutable std::once_flag m_once;
-    mutable std::vector<float> m_shares;
+    mutable std::vector<DiscProbes> m_probes;
     mutable int m_levels = 0;
 };
 
-/// The irradiance change at p (normal n) that the dynamic photons say is there, beyond their
-/// noise (above). `shares` are the point's disc shares per level (nullptr: whole discs).
-Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings, const float* shares);
+/// The share of the correction kernel's weight in the cells `probes` found on the surface.
+float kernel_share(const DiscProbes& probes);
 
-/// The static records with correction_at added at each (negative results clamped to 0). `shares`
+/// The irradiance change at p (normal n) that the dynamic photons say is there, beyond their
+/// noise (above). `probes` are the point's discs per level (nullptr: whole discs).
+Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings, const DiscProbes* probes);
+
+/// The static records with correction_at added at each (negative results clamped to 0). `probes`
 /// from CorrectionCoverage (may be empty when `dynamic` is). `changed`, when given, gets a flag
 /// per record: whether its irradiance changed.
 IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
-                                const CorrectionSettings& settings, const std::vector<float>& shares,
+                                const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
                                 std::vector<uint8_t>* changed = nullptr);
 
 }  // namespace steadylight

@@ -7,6 +7,7 @@
 
 #include "steadylight/base/halton.h"
 #include "steadylight/base/rng.h"
+#include "support/scene_builder.h"
 
 namespace steadylight {
 namespace {
@@ -24,9 +25,9 @@ std::vector<Photon> uniform_photons(int count, float power, float x0 = -4, float
     return photons;
 }
 
-Rgb correction(const std::vector<Photon>& photons, Vec3 p, const float* shares = nullptr) {
+Rgb correction(const std::vector<Photon>& photons, Vec3 p, const DiscProbes* probes = nullptr) {
     const PhotonMap map(photons, long(photons.size()));
-    return correction_at(map, p, up, CorrectionSettings{}, shares);
+    return correction_at(map, p, up, CorrectionSettings{}, probes);
 }
 
 // Positive and negative photons at random, equally many: no change, and the estimate says so
@@ -71,15 +72,108 @@ TEST(RecordCorrection, SharpChangeIsKeptAtItsCentre) {
     EXPECT_NEAR(luminance(correction(photons, {0, 0, 0})), -1e-3 * density, 0.04 * 1e-3 * density);
 }
 
-// At the edge of a surface half of each disc is off it: the disc's share (1/2) restores the
-// change; without it the estimate reads half.
-TEST(RecordCorrection, DiscShareOnTheSurfaceRestoresTheChangeAtAnEdge) {
+/// The probes of a disc centred on the edge x = 0 of the floor x > 0, turned by `turn` (as
+/// surface_coverage.cpp places them, at the middle of each ring's area).
+DiscProbes probes_on_the_floor_beyond_x_0(float turn) {
+    const Frame frame = Frame::from_normal(up);
+    DiscProbes probes;
+    probes.reached = 0;
+    probes.turn = turn;
+    for (int ring = 0; ring < DiscProbes::rings; ++ring)
+        for (int j = 0; j < DiscProbes::sectors; ++j) {
+            const float phi = 2 * pi * (float(j) + turn + 0.5f * float(ring)) / DiscProbes::sectors;
+            if (frame.to_world({std::cos(phi), std::sin(phi), 0}).x > 0) probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
+        }
+    return probes;
+}
+
+// At the edge of a surface half of each disc is off it: the probes (half the cells at every
+// level, on average over their turns) restore the change; without them the estimate reads half.
+TEST(RecordCorrection, DiscProbesOnTheSurfaceRestoreTheChangeAtAnEdge) {
     const int count = 20'000;
     const std::vector<Photon> photons = uniform_photons(count, -1e-3f, 0, 4);
     const double truth = -1e-3 * count / 32;
-    const float halves[max_correction_levels] = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
-    EXPECT_NEAR(luminance(correction(photons, {0, 0, 0}, halves)), truth, 0.03 * std::abs(truth));
+    double sum = 0;
+    const int turns = 32;
+    for (int i = 0; i < turns; ++i) {
+        DiscProbes probes[max_correction_levels];
+        std::fill(std::begin(probes), std::end(probes), probes_on_the_floor_beyond_x_0((float(i) + 0.5f) / turns));
+        sum += luminance(correction(photons, {0, 0, 0}, probes));
+    }
+    EXPECT_NEAR(sum / turns, truth, 0.03 * std::abs(truth));
     EXPECT_NEAR(luminance(correction(photons, {0, 0, 0})), truth / 2, 0.03 * std::abs(truth));
+}
+
+// The kernel weighs a disc's inner ring (the half of its area nearer the centre) three times its
+// outer one: with only the inner ring on the surface it holds 3/4 of the weight.
+TEST(RecordCorrection, KernelShareWeighsTheInnerRingThreeTimes) {
+    EXPECT_EQ(kernel_share(DiscProbes{}), 1.0f);
+    EXPECT_EQ(kernel_share(DiscProbes{.reached = 0x00ff}), 0.75f);
+    EXPECT_EQ(kernel_share(DiscProbes{.reached = 0xff00}), 0.25f);
+    EXPECT_EQ(kernel_share(DiscProbes{.reached = 0x0101}), 1.0f / 8);
+}
+
+// A disc with less than a quarter of the kernel's weight on the surface (two inner cells: 3/16)
+// reads nothing: with only the finest disc on the surface the change is the finest level's, and
+// with none on it there is no change.
+TEST(RecordCorrection, DiscsMostlyOffTheSurfaceReadNothing) {
+    const std::vector<Photon> photons = uniform_photons(20'000, -1e-3f);
+    DiscProbes probes[max_correction_levels];
+    std::fill(std::begin(probes), std::end(probes), DiscProbes{.reached = 0x0003});
+    EXPECT_EQ(correction(photons, {0, 0, 0}, probes), Rgb{});
+    probes[0] = DiscProbes{};
+    const PhotonMap map(photons, long(photons.size()));
+    const CorrectionSettings finest_only{.levels = 1};
+    EXPECT_EQ(correction(photons, {0, 0, 0}, probes), correction_at(map, {0, 0, 0}, up, finest_only, nullptr));
+}
+
+/// A floor with strips 12 cm wide and 2 cm high every 24 cm (x = 0.24 i), as coloured stripes
+/// stand proud of a wall, and photons of an even change on every face that looks up.
+struct StripedFloor {
+    Scene scene;
+    std::vector<Photon> photons;
+    double change = 0;  // per unit area
+
+    static bool on_a_strip(float x) { return std::abs(x - 0.24f * std::round(x / 0.24f)) < 0.06f; }
+
+    StripedFloor() : scene(make_desc()) {
+        const int count = 200'000;
+        for (int i = 0; i < count; ++i) {
+            const float x = -4 + 8 * halton(0, uint64_t(i)), z = -4 + 8 * halton(1, uint64_t(i));
+            photons.push_back(floor_photon(x, z, -1e-3f, std::abs(x) < 2 && on_a_strip(x) ? 0.02f : 0.0f));
+        }
+        change = -1e-3 * count / 64;
+    }
+
+    static SceneDesc make_desc() {
+        SceneDesc desc = testing::make_empty_scene({0, 2, -5}, {0, 0, 0});
+        const int white = testing::add_material(desc, {});
+        testing::add_object(desc, make_quad({-4, 0, -4}, {0, 0, 8}, {8, 0, 0}), white);
+        for (int i = -8; i <= 8; ++i) testing::add_object(desc, make_box({0.24f * float(i), 0.01f, 0}, {0.12f, 0.02f, 8}), white);
+        return desc;
+    }
+};
+
+// Records between the strips and on them read the even change within 6% (on average over
+// records along the strips, each probed differently). The probes of a record between two
+// strips stop at the strips' sides: the photons beyond, on the strips and the floor, lie in
+// cells its surface does not reach and must not count, or, divided by the small share, they
+// counted up to 16 times (blender_glass's stripes: their change came out twice the true one).
+TEST(RecordCorrection, RecordsAmongStripsProudOfTheSurfaceReadTheChangeThere) {
+    const StripedFloor floor;
+    const PreparedFrame prepared(floor.scene, 0);
+    const PhotonMap map(floor.photons, long(floor.photons.size()));
+    for (const float x : {0.12f, 0.0f}) {  // between two strips, on one
+        IrradianceCache cache;
+        const float y = StripedFloor::on_a_strip(x) ? 0.02f : 0.0f;
+        for (int i = 0; i < 16; ++i) cache.insert({.p = {x, y, -1.5f + 0.2f * float(i)}, .n = up, .E = {10, 10, 10}, .radius = 0.1f});
+        const CorrectionCoverage coverage;
+        const std::vector<DiscProbes>& probes = coverage.probes(prepared.context(), cache, CorrectionSettings{});
+        const IrradianceCache corrected = corrected_cache(cache, map, CorrectionSettings{}, probes);
+        double sum = 0;
+        for (const IrradianceRecord& r : corrected.records()) sum += luminance(r.E) - 10;
+        EXPECT_NEAR(sum / 16, floor.change, 0.06 * std::abs(floor.change)) << "x = " << x;
+    }
 }
 
 // Photons on a parallel surface 0.8 below (the floor under a table top) are not on the record's

@@ -84,7 +84,7 @@ Rgb PhotonMap::estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySetti
     if (radius) *radius = r;
     if (probes) *probes = DiscProbes{};
     if (neighbours.empty()) return {};
-    const DiscProbes disc = coverage.probes(p, n, r, seed);
+    const DiscProbes disc = coverage.probes(p, n, r, coverage_lift * r, r, seed);
     if (probes) *probes = disc;
     const bool whole = disc.share() == 1;
     const Frame frame = Frame::from_normal(n);

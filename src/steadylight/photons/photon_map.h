@@ -52,8 +52,10 @@ struct DiscProbes {
 /// How a density estimate's disc lies on the surface under its centre (surface_coverage.h).
 struct SurfaceCoverage {
     /// The probes of the disc of radius `radius` around `p`, in the plane of normal `n`: which
-    /// of its cells the surface under p reaches; `seed` varies where they probe.
-    std::function<DiscProbes(Vec3 p, Vec3 n, float radius, uint64_t seed)> probes;
+    /// of its cells the surface under p reaches, seen from `lift` above the plane (a step lower
+    /// than that does not stop it), a surface at most `reach` below the plane counting as on it;
+    /// `seed` varies where they probe.
+    std::function<DiscProbes(Vec3 p, Vec3 n, float radius, float lift, float reach, uint64_t seed)> probes;
     /// Whether the surface under p reaches q (taken onto the disc's plane, or, in front of it,
     /// seen from the centre), `radius` being the disc's: a photon there lies on the surface the
     /// estimate is for, not behind a wall that rises from it (the inside of a lamp's closed

@@ -162,7 +162,7 @@ TEST(PhotonMap, IrradiancePhotonsDivideByTheSurfacesShareOfTheDisc) {
     const PhotonMap map = halton_floor_photons(1000, {1e-3f, 0, 0});
     const DensitySettings settings{.k = 50, .max_radius = 0.5f};
     const IrradiancePhotons whole(map, 1, settings, {});
-    const auto half_disc = [](Vec3, Vec3, float, uint64_t) { return DiscProbes{.reached = 0x0f0f}; };
+    const auto half_disc = [](Vec3, Vec3, float, float, float, uint64_t) { return DiscProbes{.reached = 0x0f0f}; };
     const IrradiancePhotons half(map, 1, settings, {half_disc, [](Vec3, Vec3, float, Vec3) { return true; }});
     const Vec3 p = map.photons()[500].p;
     EXPECT_FLOAT_EQ(half.lookup(p, {0, 1, 0}, 0.1f)->r, 2 * whole.lookup(p, {0, 1, 0}, 0.1f)->r);
@@ -183,7 +183,7 @@ TEST(PhotonMap, OnlyThePhotonsTheSurfaceReachesCount) {
     for (int i = 0; i < 400; ++i) {
         const Vec3 p{0.2f + 0.6f * rng.next_float(), 0, 0.2f + 0.6f * rng.next_float()};
         const DiscProbes probes{.reached = 0x0f0f, .turn = rng.next_float()};
-        const auto half_disc = [&](Vec3, Vec3, float, uint64_t) { return probes; };
+        const auto half_disc = [&](Vec3, Vec3, float, float, float, uint64_t) { return probes; };
         const SurfaceCoverage one_half{half_disc, [&](Vec3 c, Vec3, float radius, Vec3 q) {
                                            const Vec3 local = frame.to_local(q - c);
                                            return probes.reached_cell(local.x, local.y, radius * radius);

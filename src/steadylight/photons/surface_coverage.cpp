@@ -42,17 +42,20 @@ bool covers(const ProbeWorld& world, Vec3 p, Vec3 n, Vec3 q, float lift, float r
     return world.tracer.occluded({q + n * lift, -n, lift + reach}, world.visibility);
 }
 
-/// How far off the surface the probes start: a little of the disc, well above the ray epsilon.
-float lift_for(Vec3 p, float radius) { return std::max(coverage_lift * radius, 10 * ray_epsilon(p)); }
+/// The least height off the surface the probes start at: well above the ray epsilon.
+float min_lift(Vec3 p) { return 10 * ray_epsilon(p); }
+
+/// How far off the surface `reaches` starts: a little of the disc.
+float lift_for(Vec3 p, float radius) { return std::max(coverage_lift * radius, min_lift(p)); }
 
 }  // namespace
 
 SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibility) {
     const auto world = std::make_shared<const ProbeWorld>(ProbeWorld{context.scene, context.tracer, context.frame, visibility});
     SurfaceCoverage coverage;
-    coverage.probes = [world](Vec3 p, Vec3 n, float radius, uint64_t seed) {
+    coverage.probes = [world](Vec3 p, Vec3 n, float radius, float lift_above, float reach, uint64_t seed) {
         const Frame frame = Frame::from_normal(n);
-        const float lift = lift_for(p, radius);
+        const float lift = std::max(lift_above, min_lift(p));
         const uint64_t bits = hash_ids(seed);
         DiscProbes probes;
         probes.reached = 0;
@@ -65,7 +68,7 @@ SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibil
             for (int j = 0; j < DiscProbes::sectors; ++j) {
                 const float phi = 2 * pi * (float(j) + probes.turn + 0.5f * float(ring)) / DiscProbes::sectors;
                 const Vec3 q = p + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0});
-                if (covers(*world, p, n, q, lift, radius))
+                if (covers(*world, p, n, q, lift, reach))
                     probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
             }
         }

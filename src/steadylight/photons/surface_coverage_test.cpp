@@ -27,7 +27,7 @@ SceneDesc floor_wall_cube_ball() {
 /// sixteenth-quantised sample).
 double mean_coverage(const SurfaceCoverage& coverage, Vec3 p, Vec3 n) {
     double sum = 0;
-    for (uint64_t seed = 0; seed < 64; ++seed) sum += coverage.probes(p, n, 0.2f, seed).share();
+    for (uint64_t seed = 0; seed < 64; ++seed) sum += coverage.probes(p, n, 0.2f, 0.2f * coverage_lift, 0.2f, seed).share();
     return sum / 64;
 }
 
@@ -40,7 +40,7 @@ TEST(SurfaceCoverage, CountsTheShareOfTheDiscOnTheSurface) {
     const PreparedFrame prepared(scene, 0);
     const SurfaceCoverage coverage = surface_coverage(prepared.context(), Visibility::everything);
     const Vec3 up{0, 1, 0};
-    EXPECT_EQ(coverage.probes({1, 0, 1}, up, 0.2f, 0).share(), 1.0f);
+    EXPECT_EQ(coverage.probes({1, 0, 1}, up, 0.2f, 0.2f * coverage_lift, 0.2f, 0).share(), 1.0f);
     EXPECT_NEAR(mean_coverage(coverage, {3, 2.5f, 3}, up), 1.0, 1e-6);  // the ball's top
     EXPECT_NEAR(mean_coverage(coverage, {1e-3f, 0, 1}, up), 0.5, 0.03);   // floor at the wall
     EXPECT_NEAR(mean_coverage(coverage, {0, 1e-3f, 1}, {1, 0, 0}), 0.5, 0.03);  // wall at the floor
