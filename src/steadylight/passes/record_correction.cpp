@@ -73,12 +73,13 @@ float kernel_share(const DiscProbes& probes) {
 Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings, const DiscProbes* probes) {
     SL_CHECK(settings.levels >= 1 && settings.levels <= max_correction_levels);
     // The levels up to the first whose disc lies less than min_kernel_share on the surface.
-    int levels = settings.levels;
-    if (probes) {
-        levels = 0;
-        while (levels < settings.levels && kernel_share(probes[levels]) >= min_kernel_share) ++levels;
-        if (levels == 0) return {};
+    float share[max_correction_levels];
+    int levels = 0;
+    for (; levels < settings.levels; ++levels) {
+        share[levels] = probes ? kernel_share(probes[levels]) : 1.0f;
+        if (share[levels] < min_kernel_share) break;
     }
+    if (levels == 0) return {};
     thread_local std::vector<Neighbour> found;
     dynamic.within(p, level_radius(settings, levels - 1), found);
     if (found.empty()) return {};
@@ -88,7 +89,7 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
     for (int l = 0; l < levels; ++l) {
         radius[l] = level_radius(settings, l);
         inverse_r2[l] = 1 / (radius[l] * radius[l]);
-        scale[l] = 2 * inverse_r2[l] / (pi * (probes ? kernel_share(probes[l]) : 1.0f));
+        scale[l] = 2 * inverse_r2[l] / (pi * share[l]);
     }
     Rgb detail[max_correction_levels];
     float variance[max_correction_levels] = {};

@@ -81,7 +81,7 @@ DiscProbes probes_on_the_floor_beyond_x_0(float turn) {
     probes.turn = turn;
     for (int ring = 0; ring < DiscProbes::rings; ++ring)
         for (int j = 0; j < DiscProbes::sectors; ++j) {
-            const float phi = 2 * pi * (float(j) + turn + 0.5f * float(ring)) / DiscProbes::sectors;
+            const float phi = probes.angle(ring, j);
             if (frame.to_world({std::cos(phi), std::sin(phi), 0}).x > 0) probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
         }
     return probes;

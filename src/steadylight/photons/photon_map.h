@@ -39,6 +39,9 @@ struct DiscProbes {
     float turn = 0;
 
     float share() const { return float(std::popcount(reached)) / (rings * sectors); }
+    /// The angle, in the disc's frame, at which the probe of cell (ring, sector) lies: the
+    /// middle of its sector, turned by `turn` sectors, the outer ring half a sector further.
+    float angle(int ring, int sector) const { return 2 * pi * (float(sector) + turn + 0.5f * float(ring)) / sectors; }
     /// Whether the probe of the cell holding the disc's point (x, y), in its frame, reached it;
     /// `radius2` is the disc's squared radius.
     bool reached_cell(float x, float y, float radius2) const {

@@ -66,7 +66,7 @@ SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibil
             // area fraction within its share.
             const float r = radius * std::sqrt((float(ring) + jitter) / DiscProbes::rings);
             for (int j = 0; j < DiscProbes::sectors; ++j) {
-                const float phi = 2 * pi * (float(j) + probes.turn + 0.5f * float(ring)) / DiscProbes::sectors;
+                const float phi = probes.angle(ring, j);
                 const Vec3 q = p + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0});
                 if (covers(*world, p, n, q, lift, reach))
                     probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
