@@ -90,16 +90,30 @@ TEST(IrradianceCache, InterpolationIsWardsWeightedMean) {
     EXPECT_NEAR(E->b, want.b, 1e-5f);
 }
 
-// A record's gradients may change its irradiance by at most its own value: between 0 and 2 E.
+// Over its radius a record's translational gradient changes its irradiance by at most its own
+// E: a steeper one is scaled to E / R (a crease's records had gradients 40 times that).
+TEST(IrradianceCache, TranslationalGradientChangesARecordByAtMostItsIrradianceOverItsRadius) {
+    IrradianceRecord record = record_at({0, 0, 0}, up, {1, 1, 1}, 1.0f);
+    record.translational_gradient = {Vec3{-10, 0, 0}, Vec3{0, 0.5f, 0}, Vec3{2, 0, 0}};
+    const std::optional<Rgb> E = cache_of({record}).interpolate({0.2f, 0.1f, 0}, up);
+    ASSERT_TRUE(E);
+    EXPECT_FLOAT_EQ(E->r, 0.8f);   // -10 scaled to -1: 1 - 0.2
+    EXPECT_FLOAT_EQ(E->g, 1.05f);  // 0.5 R is less than E: as it is
+    EXPECT_FLOAT_EQ(E->b, 1.2f);   // 2 scaled to 1
+    EXPECT_FLOAT_EQ(cache_of({record}).interpolate({-0.2f, 0, 0}, up)->r, 1.2f);
+}
+
+// With the rotational gradient as well, the change stays within [0, 2 E].
 TEST(IrradianceCache, ExtrapolatedIrradianceStaysBetweenZeroAndTwiceTheRecords) {
     IrradianceRecord record = record_at({0, 0, 0}, up, {1, 1, 1}, 1.0f);
-    record.translational_gradient = {Vec3{-10, 0, 0}, Vec3{0, 0, 0}, Vec3{2, 0, 0}};
-    const std::optional<Rgb> E = cache_of({record}).interpolate({0.2f, 0, 0}, up);
+    record.translational_gradient = {Vec3{-1, 0, 0}, Vec3{0, 0, 0}, Vec3{1, 0, 0}};
+    record.rotational_gradient = {Vec3{0, -20, 0}, Vec3{0, 0, 0}, Vec3{0, 20, 0}};
+    const Vec3 tilted = normalize(Vec3{0.1f, 0, 1});  // turn = up x tilted points along +y
+    const std::optional<Rgb> E = cache_of({record}).interpolate({0.1f, 0, 0}, tilted);
     ASSERT_TRUE(E);
     EXPECT_EQ(E->r, 0.0f);
     EXPECT_FLOAT_EQ(E->g, 1.0f);
-    EXPECT_FLOAT_EQ(E->b, 1.4f);
-    EXPECT_FLOAT_EQ(cache_of({record}).interpolate({-0.2f, 0, 0}, up)->r, 2.0f);
+    EXPECT_FLOAT_EQ(E->b, 2.0f);
 }
 
 /// The same records with both gradients zeroed.
