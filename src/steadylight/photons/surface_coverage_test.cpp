@@ -64,5 +64,24 @@ TEST(SurfaceCoverage, ReachesOnlyPointsOfItsOwnSurface) {
     EXPECT_FALSE(coverage.reaches({1.4f, 0, 2}, up, 2.0f, {2, 1, 2}));     // the cube's top
 }
 
+// Light passes through glass, and photons land on the floor under and behind a glass block:
+// the probes look through it (rough glass too), where an opaque block hides the floor.
+TEST(SurfaceCoverage, LooksThroughGlass) {
+    for (const float roughness : {0.0f, 0.3f}) {
+        SceneDesc desc = make_empty_scene({2, 2, -5}, {2, 0, 2});
+        add_object(desc, make_quad({0, 0, 0}, {0, 0, 4}, {4, 0, 0}), add_material(desc, {}));
+        add_object(desc, make_box({2, 0.5f, 2}, {1, 1, 1}),
+                   add_material(desc, {.type = MaterialType::dielectric, .roughness = roughness}));
+        const Scene scene(std::move(desc));
+        const PreparedFrame prepared(scene, 0);
+        const SurfaceCoverage coverage = surface_coverage(prepared.context(), Visibility::everything);
+        const Vec3 up{0, 1, 0};
+        EXPECT_NEAR(mean_coverage(coverage, {1.499f, 0, 2}, up), 1.0, 1e-6) << roughness;  // at the block's foot
+        EXPECT_NEAR(mean_coverage(coverage, {2, 0, 2}, up), 1.0, 1e-6) << roughness;       // under it
+        EXPECT_TRUE(coverage.reaches({1.4f, 0, 2}, up, 0.5f, {1.7f, 0, 2})) << roughness;
+        EXPECT_TRUE(coverage.reaches({2, 0, 2}, up, 0.5f, {1.6f, 0, 2.1f})) << roughness;
+    }
+}
+
 }  // namespace
 }  // namespace steadylight

@@ -28,11 +28,28 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// Geometry masks: static or dynamic, opaque or glass.
 constexpr unsigned static_mask = 1u;
 constexpr unsigned dynamic_mask = 2u;
+constexpr unsigned static_glass_mask = 4u;
+constexpr unsigned dynamic_glass_mask = 8u;
 
 unsigned ray_mask(Visibility visibility) {
-    return visibility == Visibility::static_only ? static_mask : ~0u;
+    switch (visibility) {
+        case Visibility::everything: return ~0u;
+        case Visibility::static_only: return static_mask | static_glass_mask;
+        case Visibility::opaque: return static_mask | dynamic_mask;
+        case Visibility::static_opaque: return static_mask;
+    }
+    return ~0u;
+}
+
+bool sees_dynamic(Visibility visibility) {
+    return visibility == Visibility::everything || visibility == Visibility::opaque;
+}
+
+bool is_glass(const Scene& scene, int object) {
+    return scene.desc().materials[size_t(scene.object(object).material)].type == MaterialType::dielectric;
 }
 
 RTCGeometry make_triangle_geometry(const TriangleMesh& mesh, const Transform& to_space) {
@@ -143,7 +160,8 @@ RayTracer::RayTracer(const Scene& scene, const FrameState& frame) : m_scene(scen
     m_object_scenes.assign(scene.objects().size(), nullptr);
 
     for (const int object : scene.static_objects()) add_static_object(object, frame.world_from_object[size_t(object)]);
-    for (const int object : scene.dynamic_objects()) add_instanced_object(object, dynamic_mask);
+    for (const int object : scene.dynamic_objects())
+        add_instanced_object(object, is_glass(scene, object) ? dynamic_glass_mask : dynamic_mask);
     rtcCommitScene(m_static_scene);
     set_frame(frame);
 }
@@ -181,8 +199,10 @@ void RayTracer::attach_alpha_test(RTCGeometry geometry, int object) {
 void RayTracer::add_static_object(int object, const Transform& world_from_object) {
     const RTCGeometry g = make_world_geometry(m_scene.object(object).geometry, world_from_object);
     // Embree spheres cannot be stretched: an unevenly scaled sphere goes in as an instance.
-    if (!g) return add_instanced_object(object, static_mask);
+    const bool glass = is_glass(m_scene, object);
+    if (!g) return add_instanced_object(object, glass ? static_glass_mask : static_mask);
     attach_alpha_test(g, object);
+    rtcSetGeometryMask(g, glass ? static_glass_mask : static_mask);
     const unsigned id = attach(m_static_scene, g);
     m_static_geometry_object.resize(id + 1, -1);
     m_static_geometry_object[id] = object;
@@ -212,7 +232,7 @@ void RayTracer::add_instanced_object(int object, unsigned mask) {
     rtcReleaseGeometry(instance);
     m_instance_object.resize(id + 1, -1);
     m_instance_object[id] = object;
-    m_has_static_instances |= mask == static_mask;
+    m_has_static_instances |= (mask & (static_mask | static_glass_mask)) != 0;
 }
 
 void RayTracer::set_frame(const FrameState& frame) {
@@ -238,7 +258,7 @@ void RayTracer::set_frame(const FrameState& frame) {
 }
 
 bool RayTracer::may_hit_instances(const Ray& ray, float tmax, Visibility visibility) const {
-    if (visibility == Visibility::static_only && !m_has_static_instances) return false;
+    if (!sees_dynamic(visibility) && !m_has_static_instances) return false;
     // Slab test against the instances' bounding box: most rays pass far from the few moving
     // objects, and this is cheaper than a second Embree query that finds nothing.
     float t0 = 0, t1 = tmax;

@@ -17,7 +17,16 @@
 
 namespace steadylight {
 
-enum class Visibility { everything, static_only };
+/// What a ray can meet: every object, or the static ones only (the localized method's static
+/// scene); the `_opaque` kinds look through glass (dielectric objects), as the probes of where
+/// photons land do (photons/surface_coverage.cpp).
+enum class Visibility { everything, static_only, opaque, static_opaque };
+
+/// The same objects, glass left out.
+constexpr Visibility opaque_only(Visibility visibility) {
+    return visibility == Visibility::everything || visibility == Visibility::opaque ? Visibility::opaque
+                                                                                    : Visibility::static_opaque;
+}
 
 /// The nearest surface a ray meets: which object and primitive, and where along the ray.
 struct Hit {

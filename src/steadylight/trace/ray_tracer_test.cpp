@@ -51,6 +51,23 @@ TEST(RayTracer, StaticOnlyRaysPassThroughDynamicObjects) {
     EXPECT_TRUE(tracer.occluded(down_at_origin, Visibility::everything));
 }
 
+// Opaque-only rays pass through glass, static or moving, and see everything else.
+TEST(RayTracer, OpaqueOnlyRaysPassThroughGlass) {
+    for (const bool moving : {false, true}) {
+        SceneDesc desc = moving ? floor_and_moving_sphere() : make_empty_scene({0, 5, 0}, {0, 0, 0});
+        const int glass = add_material(desc, {.type = MaterialType::dielectric});
+        add_object(desc, make_box({0, 5, 0}, {1, 1, 1}), glass);  // a glass block above the sphere
+        if (!moving) add_object(desc, make_quad({-10, 0, -10}, {0, 0, 20}, {20, 0, 0}), add_material(desc, {}));
+        const Scene scene(std::move(desc));
+        const RayTracer tracer(scene, scene.evaluate(0));
+        EXPECT_NEAR(tracer.intersect(down_at_origin)->t, 4.5f, 1e-4f) << moving;
+        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::static_only)->t, 4.5f, 1e-4f) << moving;
+        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::opaque)->t, moving ? 7.0f : 10.0f, 1e-4f) << moving;
+        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::static_opaque)->t, 10.0f, 1e-4f) << moving;
+        EXPECT_FALSE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 6.5f}, Visibility::opaque)) << moving;
+    }
+}
+
 TEST(RayTracer, OcclusionStopsAtTmax) {
     const Scene scene(floor_and_moving_sphere());
     const RayTracer tracer(scene, scene.evaluate(0));
