@@ -51,20 +51,31 @@ TEST(RayTracer, StaticOnlyRaysPassThroughDynamicObjects) {
     EXPECT_TRUE(tracer.occluded(down_at_origin, Visibility::everything));
 }
 
-// Opaque-only rays pass through glass, static or moving, and see everything else.
+// Opaque-only rays pass through glass, static or moving, and meet everything else.
 TEST(RayTracer, OpaqueOnlyRaysPassThroughGlass) {
-    for (const bool moving : {false, true}) {
-        SceneDesc desc = moving ? floor_and_moving_sphere() : make_empty_scene({0, 5, 0}, {0, 0, 0});
-        const int glass = add_material(desc, {.type = MaterialType::dielectric});
-        add_object(desc, make_box({0, 5, 0}, {1, 1, 1}), glass);  // a glass block above the sphere
-        if (!moving) add_object(desc, make_quad({-10, 0, -10}, {0, 0, 20}, {20, 0, 0}), add_material(desc, {}));
+    const int glass_material = 1;  // added after floor_and_moving_sphere's white
+    {  // a static glass block over the moving (opaque) sphere
+        SceneDesc desc = floor_and_moving_sphere();
+        ASSERT_EQ(add_material(desc, {.type = MaterialType::dielectric}), glass_material);
+        add_object(desc, make_box({0, 5, 0}, {1, 1, 1}), glass_material);
         const Scene scene(std::move(desc));
         const RayTracer tracer(scene, scene.evaluate(0));
-        EXPECT_NEAR(tracer.intersect(down_at_origin)->t, 4.5f, 1e-4f) << moving;
-        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::static_only)->t, 4.5f, 1e-4f) << moving;
-        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::opaque)->t, moving ? 7.0f : 10.0f, 1e-4f) << moving;
-        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::static_opaque)->t, 10.0f, 1e-4f) << moving;
-        EXPECT_FALSE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 6.5f}, Visibility::opaque)) << moving;
+        EXPECT_NEAR(tracer.intersect(down_at_origin)->t, 4.5f, 1e-4f);  // the block's top
+        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::static_only)->t, 4.5f, 1e-4f);
+        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::opaque)->t, 7.0f, 1e-4f);  // the sphere
+        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::static_opaque)->t, 10.0f, 1e-4f);
+        EXPECT_FALSE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 6.5f}, Visibility::opaque));
+    }
+    {  // the moving sphere made of glass
+        SceneDesc desc = floor_and_moving_sphere();
+        ASSERT_EQ(add_material(desc, {.type = MaterialType::dielectric}), glass_material);
+        desc.objects[1].material = glass_material;
+        const Scene scene(std::move(desc));
+        const RayTracer tracer(scene, scene.evaluate(0));
+        EXPECT_NEAR(tracer.intersect(down_at_origin)->t, 7.0f, 1e-4f);
+        EXPECT_NEAR(tracer.intersect(down_at_origin, Visibility::opaque)->t, 10.0f, 1e-4f);
+        EXPECT_FALSE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 9.5f}, Visibility::opaque));
+        EXPECT_TRUE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 9.5f}, Visibility::everything));
     }
 }
 
