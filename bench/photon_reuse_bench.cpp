@@ -143,8 +143,7 @@ void run_scene(const std::string& name, const Options& options) {
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PhotonMappingSettings settings;
     const Stopwatch static_time;
-    const auto paths = std::make_shared<const StaticPhotonPaths>(
-        trace_segment_photon_paths(scene, tracer, {0, scene.frame_count() - 1}, settings.photons));
+    const auto paths = trace_segment_photon_paths(scene, tracer, {0, scene.frame_count() - 1}, settings);
     std::printf("\n%s: static photon paths %.3f s: %ld global + %ld caustic paths, %zu rays, %.1f MB\n", name.c_str(),
                 static_time.elapsed_s(), paths->global.count, paths->caustic.count,
                 paths->global.segments.size() + paths->caustic.segments.size(), double(paths->bytes()) / 1e6);

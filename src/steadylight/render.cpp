@@ -103,7 +103,7 @@ StaticSolution segment_solution(const RenderSettings& settings, const Scene& sce
     std::shared_ptr<const StaticPhotonPaths> paths;
     if (reuses_photon_paths(settings)) {
         const Stopwatch time;
-        paths = std::make_shared<const StaticPhotonPaths>(trace_segment_photon_paths(scene, tracer, segment, settings.photon.photons));
+        paths = trace_segment_photon_paths(scene, tracer, segment, settings.photon);
         spdlog::info("static photon paths: {} global and {} caustic paths, {} rays, {:.1f} MB, traced in {:.2f} s",
                      paths->global.count, paths->caustic.count, paths->global.segments.size() + paths->caustic.segments.size(),
                      double(paths->bytes()) / 1e6, time.elapsed_s());

@@ -15,7 +15,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.frame = context.frame.frame;
 
     // Pass 1: photons.
-    const FramePhotons traced(context, settings, stats, paths);
+    const FramePhotons traced(context, settings, stats, paths, paths ? paths->irradiance.get() : nullptr);
     const IrradiancePhotons& irradiance_photons = traced.irradiance;
 
     // Pass 2a: irradiance precomputed at a share of the global photons, then the irradiance
@@ -50,6 +50,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     take_common_layers(shaded, out);
     out.records = record_picture(context.frame.camera, cache.records());
     stats.irradiance_photons = irradiance_photons.computed();
+    stats.irradiance_reused = irradiance_photons.reused();
     stats.total_s = total.elapsed_s();
     return out;
 }

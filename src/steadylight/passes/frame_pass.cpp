@@ -170,8 +170,8 @@ StaticFrame make_static_frame(const FrameContext& context, const StaticSolution&
                               const PhotonMappingSettings& photon, const LocalizedSettings& localized) {
     SL_CHECK(solution.photon_paths);
     const StaticPhotonPaths& paths = *solution.photon_paths;
-    const IrradiancePhotons irradiance(paths.global.photons, photon.irradiance_stride, photon.irradiance_estimate,
-                                       surface_coverage(context, Visibility::static_only));
+    SL_CHECK(paths.irradiance);
+    const IrradiancePhotons& irradiance = *paths.irradiance;
     // Built as every frame builds L_t, so that its interpolations are the frame's bit for bit.
     const IrradianceCache transported = corrected_cache(solution.cache, PhotonMap{}, localized.correction, {});
     const IrradianceCache no_dynamic_cache(photon.cache);
@@ -199,7 +199,8 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
                                   : nullptr;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
-    const FramePhotons traced(context, photon, stats, solution.photon_paths.get());
+    const StaticPhotonPaths* paths = solution.photon_paths.get();
+    const FramePhotons traced(context, photon, stats, paths, paths ? paths->irradiance.get() : nullptr);
     const TracedPhotons& photons = traced.maps;
     const IrradiancePhotons& irradiance = traced.irradiance;
 
@@ -270,6 +271,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     if (!base) plan.changed.assign(size_t(context.frame.camera.width) * size_t(context.frame.camera.height), 15);
     out.changed = changed_picture(context.frame.camera, plan.changed);
     stats.irradiance_photons = irradiance.computed();
+    stats.irradiance_reused = irradiance.reused();
     stats.total_s = total.elapsed_s();
     return out;
 }

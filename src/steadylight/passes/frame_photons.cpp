@@ -7,20 +7,29 @@ namespace steadylight {
 namespace {
 
 /// The photons traced whole, or composed from the static paths; counts the paths retraced.
+/// Composed, `reuse` gets what the irradiance at photons may take from `static_irradiance`.
 TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                         const StaticPhotonPaths* paths, FramePhotons::CausticChanges& caustic_changes) {
+                         const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
+                         FramePhotons::CausticChanges& caustic_changes, std::shared_ptr<const StaticIrradianceReuse>& reuse) {
     if (!paths) return trace_photons(context, settings.photons);
     ComposedPhotons composed = compose_photons(context, *paths);
     stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
     caustic_changes = {composed.caustic_traced, std::move(composed.changed_caustic_points)};
+    if (static_irradiance)
+        reuse = std::make_shared<const StaticIrradianceReuse>(
+            StaticIrradianceReuse{static_irradiance, std::move(composed.global_static_ids),
+                                  PointIndex(composed.changed_global_points), context.tracer.dynamic_bounds()});
     return std::move(composed.maps);
 }
 
 /// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
 TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                                    const StaticPhotonPaths* paths, FramePhotons::CausticChanges& caustic_changes) {
-    TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s,
-                                     [&] { return frame_maps(context, settings, stats, paths, caustic_changes); });
+                                    const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
+                                    FramePhotons::CausticChanges& caustic_changes,
+                                    std::shared_ptr<const StaticIrradianceReuse>& reuse) {
+    TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s, [&] {
+        return frame_maps(context, settings, stats, paths, static_irradiance, caustic_changes, reuse);
+    });
     stats.global_photons_emitted = maps.global.emitted();
     stats.global_photons_stored = long(maps.global.size());
     stats.caustic_photons_emitted = maps.caustic.emitted();
@@ -33,9 +42,9 @@ TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMap
 }  // namespace
 
 FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                           const StaticPhotonPaths* paths)
-    : maps(trace_counted_photons(context, settings, stats, paths, caustic_changes)),
+                           const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance)
+    : maps(trace_counted_photons(context, settings, stats, paths, static_irradiance, caustic_changes, static_reuse)),
       irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate,
-                 surface_coverage(context, Visibility::everything)) {}
+                 surface_coverage(context, Visibility::everything), static_reuse) {}
 
 }  // namespace steadylight

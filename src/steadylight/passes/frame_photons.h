@@ -12,11 +12,14 @@ namespace steadylight {
 /// A frame's photon maps and the irradiance at its photons. Construction traces the photons as
 /// the phase "photons" and records the counts and the time in `stats`: all of them, or with
 /// `paths` (the segment's static photon paths) only those the dynamic objects change, for the
-/// same maps (photon_paths.h). Never copied or moved: `irradiance` refers to `maps.global`, and
-/// to `context`, which must outlive it.
+/// same maps (photon_paths.h). With paths and `static_irradiance` (over their global map,
+/// probing the static scene) the irradiance at photons takes the static values where nothing
+/// changed around them, for the same values (StaticIrradianceReuse). Never copied or moved:
+/// `irradiance` refers to `maps.global`, to `static_irradiance` and to `context`, which must
+/// outlive it.
 struct FramePhotons {
     FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                 const StaticPhotonPaths* paths = nullptr);
+                 const StaticPhotonPaths* paths = nullptr, const IrradiancePhotons* static_irradiance = nullptr);
     FramePhotons(const FramePhotons&) = delete;
     FramePhotons& operator=(const FramePhotons&) = delete;
 
@@ -26,6 +29,8 @@ struct FramePhotons {
         bool everywhere = true;
         std::vector<Vec3> points;
     } caustic_changes;
+    /// What `irradiance` takes from the static values (null: nothing).
+    std::shared_ptr<const StaticIrradianceReuse> static_reuse;
     TracedPhotons maps;
     IrradiancePhotons irradiance;
 };

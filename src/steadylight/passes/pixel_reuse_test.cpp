@@ -90,7 +90,7 @@ PhotonMappingSettings small_settings() {
 StaticSolution solution_with_static_frame(const Scene& scene, RayTracer& tracer, const PhotonMappingSettings& settings,
                                           int view) {
     const Segment segment{0, scene.frame_count() - 1};
-    auto paths = std::make_shared<const StaticPhotonPaths>(trace_segment_photon_paths(scene, tracer, segment, settings.photons));
+    const auto paths = trace_segment_photon_paths(scene, tracer, segment, settings);
     StaticSolution solution{run_segment_pass(scene, tracer, segment, settings, paths.get())};
     solution.photon_paths = paths;
     const Bsdfs bsdfs = make_bsdfs(scene);

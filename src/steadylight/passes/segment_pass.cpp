@@ -79,8 +79,9 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
     h.add(settings.irradiance_estimate.k), h.add(settings.irradiance_estimate.max_radius), h.add(settings.irradiance_stride);
     // Raised whenever the estimate at the photons changes what it computes, so that cache files
     // made by an older steadylight are not taken for this one's. 2: unbiased and boundary-corrected;
-    // 3: photons the surface does not reach left out (lamp housings).
-    constexpr int photon_irradiance_revision = 3;
+    // 3: photons the surface does not reach left out (lamp housings);
+    // 4: one in `stride` photons chosen by their hash, their probes turned by it.
+    constexpr int photon_irradiance_revision = 4;
     h.add(photon_irradiance_revision);
     h.add(settings.gather.theta_strata), h.add(settings.gather.phi_strata), h.add(settings.gather.fixed_directions);
     h.add(settings.cache.accuracy), h.add(settings.cache.min_spacing_px), h.add(settings.cache.max_spacing_px);
@@ -97,9 +98,12 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
     PhotonMap traced;
     if (!paths) traced = trace_photons(start->context(), settings.photons, Visibility::static_only).global;
     const PhotonMap& static_photons = paths ? paths->global.photons : traced;
-    const IrradiancePhotons irradiance(static_photons, settings.irradiance_stride, settings.irradiance_estimate,
-                                       surface_coverage(start->context(), Visibility::static_only));
-    irradiance.compute_all();  // the static cache covers every view
+    std::optional<IrradiancePhotons> own;
+    const IrradiancePhotons& irradiance =
+        paths && paths->irradiance ? *paths->irradiance
+                                   : own.emplace(static_photons, settings.irradiance_stride, settings.irradiance_estimate,
+                                                 surface_coverage(start->context(), Visibility::static_only));
+    irradiance.compute_all();  // the static cache covers every view; frames take them where nothing changed
     start.reset();             // the views below place the tracer anew
 
     // The static cache over every distinct camera view of the segment.
@@ -125,12 +129,18 @@ std::vector<int> distinct_views(const Scene& scene, const Segment& segment) {
     return frames;
 }
 
-StaticPhotonPaths trace_segment_photon_paths(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                             const PhotonSettings& settings) {
+std::shared_ptr<const StaticPhotonPaths> trace_segment_photon_paths(const Scene& scene, RayTracer& tracer,
+                                                                   const Segment& segment,
+                                                                   const PhotonMappingSettings& settings) {
     begin_phase("static photon paths");
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PlacedFrame start(scene, tracer, bsdfs, segment.first);
-    return trace_static_photon_paths(start.context(), settings);
+    auto paths = std::make_shared<StaticPhotonPaths>(trace_static_photon_paths(start.context(), settings.photons));
+    // The coverage keeps the scene and the tracer, and the static objects stay where they are.
+    paths->irradiance = std::make_shared<const IrradiancePhotons>(
+        paths->global.photons, settings.irradiance_stride, settings.irradiance_estimate,
+        surface_coverage(start.context(), Visibility::static_only));
+    return paths;
 }
 
 }  // namespace steadylight

@@ -30,8 +30,11 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
 std::vector<int> distinct_views(const Scene& scene, const Segment& segment);
 
 /// The static photon paths of `segment` (photon_paths.h), which its frames compose their
-/// photon maps from instead of tracing them all. Moves `tracer` to the segment's first frame.
-StaticPhotonPaths trace_segment_photon_paths(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                             const PhotonSettings& settings);
+/// photon maps from instead of tracing them all, with the irradiance at their global photons
+/// (computed as needed; the static pass computes them all). `scene` and `tracer` must outlive
+/// the paths. Moves `tracer` to the segment's first frame.
+std::shared_ptr<const StaticPhotonPaths> trace_segment_photon_paths(const Scene& scene, RayTracer& tracer,
+                                                                   const Segment& segment,
+                                                                   const PhotonMappingSettings& settings);
 
 }  // namespace steadylight

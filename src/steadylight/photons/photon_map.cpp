@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
+#include "steadylight/base/rng.h"
 #include "steadylight/base/settings_check.h"
 
 namespace steadylight {
@@ -117,53 +119,92 @@ Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& s
     return sum / ((1 - 2.0f / 3.0f) * pi * r2);
 }
 
+namespace {
+
+/// A photon's own hash, from its bits: the same photon in the static map and in a frame's.
+uint64_t photon_hash(const Photon& photon) {
+    const auto bits = [](float x) { return uint64_t(std::bit_cast<uint32_t>(x)); };
+    return hash_ids(bits(photon.p.x) << 32 | bits(photon.p.y), bits(photon.p.z) << 32 | bits(photon.wi.x),
+                    bits(photon.wi.y) << 32 | bits(photon.wi.z));
+}
+
+}  // namespace
+
 IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings,
-                                     SurfaceCoverage coverage)
-    : m_global(&global), m_stride(size_t(stride)), m_settings(settings), m_coverage(std::move(coverage)) {
+                                     SurfaceCoverage coverage, std::shared_ptr<const StaticIrradianceReuse> reuse)
+    : m_global(&global), m_settings(settings), m_coverage(std::move(coverage)), m_reuse(std::move(reuse)) {
+    SL_CHECK(stride >= 1);
+    SL_CHECK(!m_reuse || m_reuse->static_ids.size() == global.size());
     const std::vector<Photon>& photons = global.photons();
-    const size_t count = (photons.size() + m_stride - 1) / m_stride;
-    m_n.resize(count);
-    std::vector<Vec3> positions(count);
-    for (size_t i = 0; i < count; ++i) {
-        positions[i] = photons[i * m_stride].p;
-        m_n[i] = photons[i * m_stride].n;
+    std::vector<Vec3> positions;
+    for (size_t i = 0; i < photons.size(); ++i) {
+        const uint64_t hash = photon_hash(photons[i]);
+        if (hash % uint64_t(stride) != 0) continue;
+        m_photon.push_back(uint32_t(i));
+        m_hash.push_back(hash);
+        m_n.push_back(photons[i].n);
+        positions.push_back(photons[i].p);
     }
-    m_E.resize(count);
-    m_radius.resize(count);
-    m_probes.resize(count);
-    m_state = std::make_unique<std::atomic<uint8_t>[]>(count);  // value-initialised: all empty
+    m_values.resize(m_photon.size());
+    m_state = std::make_unique<std::atomic<uint8_t>[]>(m_photon.size());  // value-initialised: all empty
     m_index = PointIndex(positions);
 }
 
-Rgb IrradiancePhotons::irradiance_at(uint32_t i, DiscProbes* probes, float* radius) const {
+std::optional<uint32_t> IrradiancePhotons::carrier(uint32_t photon) const {
+    const auto it = std::lower_bound(m_photon.begin(), m_photon.end(), photon);
+    if (it == m_photon.end() || *it != photon) return std::nullopt;
+    return uint32_t(it - m_photon.begin());
+}
+
+std::optional<IrradiancePhotons::Value> IrradiancePhotons::reused_value(uint32_t i) const {
+    if (!m_reuse) return std::nullopt;
+    const uint32_t static_id = m_reuse->static_ids[m_photon[i]];
+    if (static_id == PointIndex::removed) return std::nullopt;  // a new photon
+    const IrradiancePhotons& from = *m_reuse->values;
+    const std::optional<uint32_t> j = from.carrier(static_id);
+    SL_CHECK(j);  // the same bits, the same hash
+    const Value& value = from.value(*j);
+    const Vec3 p = m_global->photons()[m_photon[i]].p;
+    // A photon removed or added within the radius (a little beyond: rounding) changes the estimate.
+    thread_local std::vector<Neighbour> nearest;
+    m_reuse->changed.k_nearest(p, 1, value.radius * value.radius * 1.0001f + 1e-30f, nearest);
+    if (!nearest.empty()) return std::nullopt;
+    // So may a dynamic object its probes meet.
+    const float extent = coverage_probe_extent(p, value.radius);
+    for (const BoundingSphere& object : m_reuse->dynamic)
+        if (!object.empty() && length(object.center - p) <= object.radius + extent) return std::nullopt;
+    return value;
+}
+
+const IrradiancePhotons::Value& IrradiancePhotons::value(uint32_t i) const {
     enum : uint8_t { empty, writing, ready };
-    if (m_state[i].load(std::memory_order_acquire) == ready) {
-        if (probes) *probes = m_probes[i];
-        if (radius) *radius = m_radius[i];
-        return m_E[i];
-    }
+    if (m_state[i].load(std::memory_order_acquire) == ready) return m_values[i];
     // A pure function of the map: whichever thread computes it first, the value is the same.
-    const Photon& photon = m_global->photons()[i * m_stride];
-    float r = 0;
-    DiscProbes disc;
-    const Rgb E = m_coverage ? m_global->estimate_irradiance_on_surface(photon.p, photon.n, m_settings, m_coverage, i, &r, &disc)
-                             : m_global->estimate_irradiance(photon.p, photon.n, m_settings, &r);
+    const std::optional<Value> reused = reused_value(i);
+    Value value;
+    if (reused) {
+        value = *reused;
+    } else {
+        const Photon& photon = m_global->photons()[m_photon[i]];
+        value.E = m_coverage ? m_global->estimate_irradiance_on_surface(photon.p, photon.n, m_settings, m_coverage, m_hash[i],
+                                                                        &value.radius, &value.probes)
+                             : m_global->estimate_irradiance(photon.p, photon.n, m_settings, &value.radius);
+    }
     uint8_t expected = empty;
     if (m_state[i].compare_exchange_strong(expected, writing, std::memory_order_acquire)) {
-        m_E[i] = E;
-        m_radius[i] = r;
-        m_probes[i] = disc;
+        m_values[i] = value;
         m_state[i].store(ready, std::memory_order_release);
-        m_computed.fetch_add(1, std::memory_order_relaxed);
+        (reused ? m_reused : m_computed).fetch_add(1, std::memory_order_relaxed);
+        return m_values[i];
     }
-    if (probes) *probes = disc;
-    if (radius) *radius = r;
-    return E;
+    // Another thread is writing the same value: wait for it.
+    while (m_state[i].load(std::memory_order_acquire) != ready) std::this_thread::yield();
+    return m_values[i];
 }
 
 void IrradiancePhotons::compute_all() const {
-    parallel_for_chunks(long(m_E.size()), 256, [&](long begin, long end) {
-        for (long i = begin; i < end; ++i) irradiance_at(uint32_t(i));
+    parallel_for_chunks(long(m_values.size()), 256, [&](long begin, long end) {
+        for (long i = begin; i < end; ++i) value(uint32_t(i));
     });
 }
 
@@ -175,13 +216,14 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
         m_index.k_nearest(p, k, max_radius * max_radius, neighbours);
         for (const Neighbour& nb : neighbours) {
             if (!(dot(m_n[nb.index], n) > 0.5f)) continue;
-            DiscProbes disc;
-            float radius = 0;
-            const Rgb E = irradiance_at(nb.index, &disc, &radius);
+            const Value& value = this->value(nb.index);
+            const Rgb E = value.E;
+            const float radius = value.radius;
+            const DiscProbes& disc = value.probes;
             if (!m_coverage) return E;
             // Untested when p lies on the photon's surface as its own estimate saw it: within
             // its disc, in a cell its surface reaches, and the photon not in front of p's plane.
-            const Photon& photon = m_global->photons()[nb.index * m_stride];
+            const Photon& photon = m_global->photons()[m_photon[nb.index]];
             const float distance = std::sqrt(nb.distance2);
             bool untested = nb.distance2 < radius * radius && dot(photon.p - p, n) <= coverage_lift * distance;
             if (untested && disc.share() < 1) {

@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "steadylight/base/bounding_sphere.h"
+#include "steadylight/base/ray.h"
 #include "steadylight/photons/photon.h"
 #include "steadylight/photons/point_index.h"
 
@@ -28,6 +30,12 @@ void validate(const DensitySettings& settings, const std::string& where);
 
 /// How far off the surface, over a disc's radius, the probes of its coverage start (surface_coverage.h).
 constexpr float coverage_lift = 0.02f;
+/// The least height off the surface they start at: well above the ray epsilon.
+inline float coverage_min_lift(Vec3 p) { return 10 * ray_epsilon(p); }
+/// How far from the centre p of a density estimate's disc of radius r the rays of its probes
+/// reach (they start at most max(coverage_lift r, coverage_min_lift) above the disc and look at
+/// most r below it), and so do those of SurfaceCoverage::reaches for points within the disc.
+inline float coverage_probe_extent(Vec3 p, float r) { return 2 * r + 2 * coverage_min_lift(p); }
 
 /// Which cells of a density estimate's disc the surface under its centre reaches, one probe per
 /// cell (surface_coverage.h): two rings of equal area, eight sectors each, in the disc's frame
@@ -133,18 +141,36 @@ private:
 /// The same photons in the same order, bit for bit (photon.h same_bits); the index aside.
 bool same_photons(const PhotonMap& a, const PhotonMap& b);
 
-/// Irradiance precomputed at every `stride`-th photon of a global map (Christensen 1999): the
-/// estimate at the photon, which counts itself like any other photon (right for photons of
-/// quasi-random paths, which crowd each other less than random points: docs/truth-suite.md),
-/// divided by the share of its disc on the surface (`coverage`; none: the whole disc). Lazily:
-/// each value is computed the first time a look-up needs it, then kept. A frame of the localized
-/// method looks up only near its few L_y records, so most values are never needed (compute_all()
-/// when they all are). Thread-safe;
-/// values do not depend on which thread computes them first. The map must outlive this object
-/// and stay where it is, and so must what `coverage` refers to while values are computed.
+class IrradiancePhotons;
+
+/// What a frame's irradiance photons take from the segment's static ones instead of estimating
+/// again (docs/localized.md, "Irradiance at photons reused"): the value at a photon the frame
+/// kept from the static map is the static one where no photon was removed or added within its
+/// estimate's radius and no dynamic object lies within its probes' extent. It is then the same,
+/// bit for bit: the same neighbours in the same order (ties go by index, and the frame's map keeps
+/// the static photons' order), the same disc, probes that meet the same static surfaces.
+struct StaticIrradianceReuse {
+    const IrradiancePhotons* values = nullptr;  // over the static map, probing the static scene
+    std::vector<uint32_t> static_ids;           // per photon of the frame's map: its static photon, or PointIndex::removed
+    PointIndex changed;                         // where static photons were removed and new ones added
+    std::vector<BoundingSphere> dynamic;        // the dynamic objects
+};
+
+/// Irradiance precomputed at one in `stride` photons of a global map (Christensen 1999), chosen
+/// by a hash of the photon itself, so that a photon a frame keeps from the static map carries a
+/// value in both or in neither: the estimate at the photon, which counts itself like any other
+/// photon (right for photons of quasi-random paths, which crowd each other less than random
+/// points: docs/truth-suite.md), divided by the share of its disc on the surface (`coverage`;
+/// none: the whole disc; its probes turned by the same hash). Lazily: each value is computed the
+/// first time a look-up needs it, then kept. A frame of the localized method looks up only near
+/// its few L_y records, so most values are never needed (compute_all() when they all are), and
+/// with `reuse` most of those it needs are the static ones. Thread-safe; values do not depend on
+/// which thread computes them first. The map must outlive this object and stay where it is, and
+/// so must what `coverage` and `reuse` refer to while values are computed.
 class IrradiancePhotons {
 public:
-    IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings, SurfaceCoverage coverage);
+    IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings, SurfaceCoverage coverage,
+                      std::shared_ptr<const StaticIrradianceReuse> reuse = nullptr);
 
     /// The irradiance of the nearest precomputed photon whose normal agrees with n, if any
     /// lies within `max_radius`. One further from p than its own estimate's radius, in a cell
@@ -155,25 +181,37 @@ public:
     /// Computes every value now, in parallel: faster than on demand when gathers will cover the
     /// whole scene anyway (the photon method, the static pass), since photons are visited in order.
     void compute_all() const;
-    /// Photons that carry a precomputed value, and how many have been computed so far.
-    size_t size() const { return m_E.size(); }
+    /// Photons that carry a precomputed value, how many values have been estimated so far, and
+    /// how many were taken from `reuse` instead.
+    size_t size() const { return m_values.size(); }
     long computed() const { return m_computed.load(); }
+    long reused() const { return m_reused.load(); }
+
+    /// An estimate, its disc's radius (max_radius when fewer photons were found) and its probes.
+    struct Value {
+        Rgb E;
+        float radius = 0;
+        DiscProbes probes;
+    };
 
 private:
-    /// Value i; with `probes`, its estimate's disc's (whose radius is max_radius when fewer
-    /// photons were found).
-    Rgb irradiance_at(uint32_t i, DiscProbes* probes = nullptr, float* radius = nullptr) const;
+    /// Value i, computed the first time.
+    const Value& value(uint32_t i) const;
+    /// Value i as `m_reuse` has it, if it may be taken from there.
+    std::optional<Value> reused_value(uint32_t i) const;
+    /// The value index of photon `photon`, if it carries one.
+    std::optional<uint32_t> carrier(uint32_t photon) const;
 
     const PhotonMap* m_global;
-    size_t m_stride;
     DensitySettings m_settings;
     SurfaceCoverage m_coverage;
+    std::shared_ptr<const StaticIrradianceReuse> m_reuse;
+    std::vector<uint32_t> m_photon;   // per value: its photon, ascending
+    std::vector<uint64_t> m_hash;     // and the photon's hash (the probes' turn)
     std::vector<Vec3> m_n;
-    mutable std::vector<Rgb> m_E;
-    mutable std::vector<float> m_radius;      // per value: its estimate's radius
-    mutable std::vector<DiscProbes> m_probes;  // and its disc's probes
+    mutable std::vector<Value> m_values;
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;  // per value: empty, being written, ready
-    mutable std::atomic<long> m_computed = 0;
+    mutable std::atomic<long> m_computed = 0, m_reused = 0;
     PointIndex m_index;
 };
 

@@ -223,7 +223,8 @@ TEST(PhotonMap, DiscProbeCellsFollowTheProbesLayout) {
 TEST(PhotonMap, IrradiancePhotonLookupRespectsNormals) {
     const PhotonMap map = halton_floor_photons(1000, {1e-3f, 1e-3f, 1e-3f});
     const IrradiancePhotons irradiance(map, 2, {.k = 50, .max_radius = 0.5f}, {});
-    EXPECT_EQ(irradiance.size(), 500u);
+    // One in two, chosen by the photons' hash: about half.
+    EXPECT_NEAR(double(irradiance.size()), 500.0, 50.0);
     EXPECT_TRUE(irradiance.lookup({0.5f, 0, 0.5f}, {0, 1, 0}, 0.2f).has_value());
     EXPECT_FALSE(irradiance.lookup({0.5f, 0, 0.5f}, {0, -1, 0}, 0.2f).has_value());
     EXPECT_FALSE(irradiance.lookup({5, 0, 5}, {0, 1, 0}, 0.2f).has_value());

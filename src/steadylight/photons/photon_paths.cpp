@@ -167,6 +167,15 @@ std::vector<Photon> compose_dynamic(const StoredPaths& paths, const std::vector<
     return dynamic;
 }
 
+/// Where a composition over `base` removed its photons and added new ones.
+std::vector<Vec3> changed_points(const PhotonMap& base, const Composition& c) {
+    std::vector<Vec3> points;
+    for (size_t i = 0; i < c.base_ids.size(); ++i)
+        if (c.base_ids[i] == PointIndex::removed) points.push_back(base.photons()[i].p);
+    for (const uint32_t i : c.added_ids) points.push_back(c.photons[i].p);
+    return points;
+}
+
 long changed_count(const std::vector<ChunkChanges>& changes) {
     long count = 0;
     for (const ChunkChanges& chunk_changes : changes) count += long(chunk_changes.paths.size());
@@ -191,6 +200,10 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     const bool dynamic = !context.scene.dynamic_objects().empty();
     const std::vector<ChunkChanges> global_changes = retrace_changed(context, paths.settings, global, MapKind::global, dynamic);
     Composition composed = compose_main(global, global_changes);
+    out.global_static_ids.assign(composed.photons.size(), PointIndex::removed);
+    for (size_t i = 0; i < composed.base_ids.size(); ++i)
+        if (composed.base_ids[i] != PointIndex::removed) out.global_static_ids[composed.base_ids[i]] = uint32_t(i);
+    out.changed_global_points = changed_points(global.photons, composed);
     out.maps.global = PhotonMap(std::move(composed.photons), global.count, global.photons, std::move(composed.base_ids),
                                 std::move(composed.added_ids));
     out.maps.dynamic = PhotonMap(compose_dynamic(global, global_changes), dynamic ? global.count : 0);
@@ -206,9 +219,7 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     }
     const std::vector<ChunkChanges> caustic_changes = retrace_changed(context, paths.settings, caustic, MapKind::caustic, false);
     composed = compose_main(caustic, caustic_changes);
-    for (size_t i = 0; i < composed.base_ids.size(); ++i)
-        if (composed.base_ids[i] == PointIndex::removed) out.changed_caustic_points.push_back(caustic.photons.photons()[i].p);
-    for (const uint32_t i : composed.added_ids) out.changed_caustic_points.push_back(composed.photons[i].p);
+    out.changed_caustic_points = changed_points(caustic.photons, composed);
     out.maps.caustic = PhotonMap(std::move(composed.photons), caustic.count, caustic.photons, std::move(composed.base_ids),
                                  std::move(composed.added_ids));
     out.caustic_retraced_paths = changed_count(caustic_changes);

@@ -44,6 +44,9 @@ struct StoredPaths {
 struct StaticPhotonPaths {
     PhotonSettings settings;
     StoredPaths global, caustic;
+    /// The irradiance at the global photons, probing the static scene, which frames take where
+    /// nothing changed (StaticIrradianceReuse); null: frames estimate every value they need.
+    std::shared_ptr<const IrradiancePhotons> irradiance;
 
     size_t bytes() const { return global.bytes() + caustic.bytes(); }
 };
@@ -54,6 +57,8 @@ StaticPhotonPaths trace_static_photon_paths(const FrameContext& context, const P
 /// A frame's maps composed from the static paths, and how many paths it retraced.
 struct ComposedPhotons {
     TracedPhotons maps;
+    std::vector<uint32_t> global_static_ids;  // per global photon: the static one it is, or PointIndex::removed (new)
+    std::vector<Vec3> changed_global_points;  // where static global photons were removed or new ones added
     long retraced_paths = 0;
     long caustic_retraced_paths = 0;  // of them caustic ones
     bool caustic_traced = false;  // the caustic map was traced whole: its targets moved

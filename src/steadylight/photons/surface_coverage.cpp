@@ -42,11 +42,8 @@ bool covers(const ProbeWorld& world, Vec3 p, Vec3 n, Vec3 q, float lift, float r
     return world.tracer.occluded({q + n * lift, -n, lift + reach}, world.visibility);
 }
 
-/// The least height off the surface the probes start at: well above the ray epsilon.
-float min_lift(Vec3 p) { return 10 * ray_epsilon(p); }
-
 /// How far off the surface `reaches` starts: a little of the disc.
-float lift_for(Vec3 p, float radius) { return std::max(coverage_lift * radius, min_lift(p)); }
+float lift_for(Vec3 p, float radius) { return std::max(coverage_lift * radius, coverage_min_lift(p)); }
 
 }  // namespace
 
@@ -60,7 +57,7 @@ SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibil
     SurfaceCoverage coverage;
     coverage.probes = [world](Vec3 p, Vec3 n, float radius, float lift_above, float reach, uint64_t seed) {
         const Frame frame = Frame::from_normal(n);
-        const float lift = std::max(lift_above, min_lift(p));
+        const float lift = std::max(lift_above, coverage_min_lift(p));
         const uint64_t bits = hash_ids(seed);
         DiscProbes probes;
         probes.reached = 0;
