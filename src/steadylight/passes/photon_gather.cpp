@@ -31,7 +31,7 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
                               Visibility visibility, Ray ray) {
     GatherHit result;
     Rgb beta{1, 1, 1};
-    for (int depth = 0; depth < 4; ++depth) {
+    for (int depth = 0; depth < max_gather_chain; ++depth) {
         const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
         if (!hit) return result;
         if (depth == 0) result.distance = hit->t;

@@ -84,6 +84,7 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
     constexpr int photon_irradiance_revision = 4;
     h.add(photon_irradiance_revision);
     h.add(settings.gather.theta_strata), h.add(settings.gather.phi_strata), h.add(settings.gather.fixed_directions);
+    h.add(max_gather_chain);
     h.add(settings.cache.accuracy), h.add(settings.cache.min_spacing_px), h.add(settings.cache.max_spacing_px);
     return h.value();
 }

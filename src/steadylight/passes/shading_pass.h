@@ -23,7 +23,7 @@ namespace steadylight {
 struct ShadingSettings {
     int samples_per_pixel = 16;    // camera rays per pixel, stratified
     int direct_samples = 2;        // shadow rays per diffuse hit and camera ray, stratified over the pixel
-    int max_specular_depth = 8;    // mirror, glass and glossy bounces followed from the camera
+    int max_specular_depth = 64;   // mirror, glass and glossy bounces followed from the camera
     DensitySettings caustic_estimate{.k = 50, .max_radius = 0.2f};
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(ShadingSettings, samples_per_pixel, direct_samples, max_specular_depth,
