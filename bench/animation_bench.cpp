@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 
+#include "steadylight/base/freed_memory.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/methods/photon_mapping.h"
 #include "steadylight/passes/frame_pass.h"
@@ -85,6 +86,7 @@ void run_scene(const std::string& name, const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    steadylight::keep_freed_memory_mapped();  // frames reuse their large arrays (freed_memory.h)
     const Options options = parse_scene_bench_options(argc, argv, 60);
     for (const std::string& scene : options.scenes) run_scene(scene, options);
     return 0;

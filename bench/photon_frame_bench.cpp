@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "steadylight/base/freed_memory.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/methods/path_tracer.h"
 #include "steadylight/methods/photon_mapping.h"
@@ -44,6 +45,7 @@ Image reference_image(const PreparedFrame& ball, const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    steadylight::keep_freed_memory_mapped();  // frames reuse their large arrays (freed_memory.h)
     const Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/ball.json"));
     const PreparedFrame ball(scene, 0);
     const Image reference = reference_image(ball, argc > 1 ? argv[1] : "ball_0000_reference.exr");

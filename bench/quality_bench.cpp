@@ -26,6 +26,7 @@
 #include <map>
 #include <sstream>
 
+#include "steadylight/base/freed_memory.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/methods/method.h"
 #include "steadylight/output/image_writer.h"
@@ -229,6 +230,7 @@ void print_temporal_noise(SceneRenderer& renderer, const std::string& name, cons
 }  // namespace
 
 int main(int argc, char** argv) {
+    steadylight::keep_freed_memory_mapped();  // frames reuse their large arrays (freed_memory.h)
     const Options options = parse(argc, argv);
     for (const std::string& name : options.scenes) {
         SceneRenderer renderer(name);

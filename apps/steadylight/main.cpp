@@ -16,6 +16,7 @@
 #include <regex>
 #include <set>
 
+#include "steadylight/base/freed_memory.h"
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
 #include "steadylight/farm/submit.h"
@@ -225,6 +226,7 @@ void run_submit(const CLI::App& submit, const CLI::App& bake, int argc, char** a
 }  // namespace
 
 int main(int argc, char** argv) {
+    steadylight::keep_freed_memory_mapped();  // frames reuse their large arrays (freed_memory.h)
     CLI::App app{"steadylight: global-illumination animations with localized final gathering"};
     app.set_version_flag("--version", std::string("steadylight ") + STEADYLIGHT_VERSION);
     app.require_subcommand(1);
