@@ -70,5 +70,41 @@ TEST(PhotonGather, RaysOffACoatBringTheCoatsAlbedoOfWhatItReflects) {
     EXPECT_NEAR(sum / rays, expected, 0.05 * expected);
 }
 
+// Light reaches a gather ray through a stack of glass panes only after many bounces: three
+// smooth panes are six surfaces to cross. On average over many rays the ray brings back the
+// ceiling's radiance times the stack's transmittance, (1 - R) / (1 + (2n - 1) R) for n panes of
+// reflectance R = 4% at each face (incoherent multiple reflections): 0.8. Gather rays once
+// followed 4 bounces and brought back nothing here; in rough glass, which holds light by total
+// internal reflection for dozens of bounces, that lost 1.2% of blender_glass's light.
+// Measured 0.790 (one pane: 0.9175 of 0.9231), about 0.3% low per face crossed: not explained.
+TEST(PhotonGather, RaysCrossAStackOfGlassPanes) {
+    SceneDesc desc = make_empty_scene({0, 0.5f, -3}, {0, 0, 0});
+    add_object(desc, make_quad({-10, 1, -10}, {20, 0, 0}, {0, 0, 20}), add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}}));
+    const int glass = add_material(desc, {.type = MaterialType::dielectric, .ior = 1.5f});
+    constexpr int panes = 3;
+    for (int i = 0; i < panes; ++i) add_object(desc, make_box({0, 0.3f + 0.2f * float(i), 0}, {8, 0.02f, 8}), glass);
+    const Scene scene(std::move(desc));
+    const PreparedFrame frame(scene, 0);
+
+    constexpr int count = 80'000;  // photons arriving from below over the ceiling's 400 m²: irradiance 1
+    std::vector<Photon> stored;
+    for (int i = 0; i < count; ++i)
+        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), 1, -10 + 20 * halton(1, uint64_t(i))}, {0, -1, 0}, {0, -1, 0},
+                          Rgb{1, 1, 1} * (400.0f / count)});
+    const PhotonMap map(std::move(stored), count);
+    const IrradiancePhotons photons(map, 1, {.k = 50, .max_radius = 0.5f}, {});
+
+    constexpr int rays = 16000;
+    double above = 0, below = 0;
+    for (int i = 0; i < rays; ++i) {
+        const float x = -1 + 2 * halton(0, uint64_t(i)), z = -1 + 2 * halton(1, uint64_t(i));
+        above += gather_from_photons(frame.context(), photons, 0.5f, Visibility::everything, {{x, 0.9f, z}, {0, 1, 0}}).L.g / rays;
+        below += gather_from_photons(frame.context(), photons, 0.5f, Visibility::everything, {{x, 0.1f, z}, {0, 1, 0}}).L.g / rays;
+    }
+    const double R = 0.04, expected = (1 - R) / (1 + (2 * panes - 1) * R);
+    std::printf("through %d panes: %.4f of the ceiling's radiance (expected %.4f)\n", panes, below / above, expected);
+    EXPECT_NEAR(below / above, expected, 0.04);
+}
+
 }  // namespace
 }  // namespace steadylight
