@@ -164,7 +164,8 @@ struct StaticIrradianceReuse {
 /// none: the whole disc; its probes turned by the same hash). Lazily: each value is computed the
 /// first time a look-up needs it, then kept. A frame of the localized method looks up only near
 /// its few L_y records, so most values are never needed (compute_all() when they all are), and
-/// with `reuse` most of those it needs are the static ones. Thread-safe; values do not depend on
+/// with `reuse` those nothing changed around are the static ones (about a fifth on BALL: the
+/// changed photons are whole path tails, spread over the room). Thread-safe; values do not depend on
 /// which thread computes them first. The map must outlive this object and stay where it is, and
 /// so must what `coverage` and `reuse` refer to while values are computed.
 class IrradiancePhotons {
