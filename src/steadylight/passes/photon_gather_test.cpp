@@ -14,6 +14,16 @@ using testing::add_material;
 using testing::add_object;
 using testing::make_empty_scene;
 
+/// 80,000 photons arriving from below over a 20 m x 20 m ceiling at height 1: irradiance 1.
+PhotonMap ceiling_photons() {
+    constexpr int count = 80'000;
+    std::vector<Photon> stored;
+    for (int i = 0; i < count; ++i)
+        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), 1, -10 + 20 * halton(1, uint64_t(i))}, {0, -1, 0}, {0, -1, 0},
+                          Rgb{1, 1, 1} * (400.0f / count)});
+    return PhotonMap(std::move(stored), count);
+}
+
 // A coated floor (one quad: two triangles) under a wide diffuse ceiling whose photons give it
 // irradiance 1 (as estimated from them). Gather rays that meet the floor read its base (no photons there: nothing) and go
 // on along the coat, kept by Russian roulette, to the ceiling, of radiance rho / pi. On average
@@ -30,13 +40,7 @@ TEST(PhotonGather, RaysOffACoatBringTheCoatsAlbedoOfWhatItReflects) {
     const Scene scene(std::move(desc));
     const PreparedFrame frame(scene, 0);
 
-    // 80,000 photons arriving from below over the ceiling's 400 m²: irradiance 1.
-    constexpr int count = 80'000;
-    std::vector<Photon> stored;
-    for (int i = 0; i < count; ++i)
-        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), 1, -10 + 20 * halton(1, uint64_t(i))}, {0, -1, 0}, {0, -1, 0},
-                          Rgb{1, 1, 1} * (400.0f / count)});
-    const PhotonMap map(std::move(stored), count);
+    const PhotonMap map = ceiling_photons();
     const IrradiancePhotons photons(map, 1, {.k = 50, .max_radius = 0.5f}, {});
 
     // The ceiling's radiance as gathered straight up from under it, where the coat's rays land.
@@ -86,12 +90,7 @@ TEST(PhotonGather, RaysCrossAStackOfGlassPanes) {
     const Scene scene(std::move(desc));
     const PreparedFrame frame(scene, 0);
 
-    constexpr int count = 80'000;  // photons arriving from below over the ceiling's 400 m²: irradiance 1
-    std::vector<Photon> stored;
-    for (int i = 0; i < count; ++i)
-        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), 1, -10 + 20 * halton(1, uint64_t(i))}, {0, -1, 0}, {0, -1, 0},
-                          Rgb{1, 1, 1} * (400.0f / count)});
-    const PhotonMap map(std::move(stored), count);
+    const PhotonMap map = ceiling_photons();
     const IrradiancePhotons photons(map, 1, {.k = 50, .max_radius = 0.5f}, {});
 
     constexpr int rays = 16000;
