@@ -2,6 +2,7 @@
 // sample), never from the thread, so images do not depend on the thread count (DESIGN.md §2.3).
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "steadylight/base/vec.h"
@@ -23,6 +24,13 @@ constexpr uint64_t hash_ids(uint64_t a, uint64_t b = 0, uint64_t c = 0, uint64_t
     h = mix_bits(h ^ (b + 0x9e3779b97f4a7c15ull));
     h = mix_bits(h ^ (c + 0x9e3779b97f4a7c15ull));
     return mix_bits(h ^ (d + 0x9e3779b97f4a7c15ull));
+}
+
+/// A hash of two vectors, bit for bit (a ray's origin and direction, a photon's position and
+/// direction): the same bits give the same hash wherever they are.
+inline uint64_t hash_bits(Vec3 a, Vec3 b) {
+    const auto bits = [](float x) { return uint64_t(std::bit_cast<uint32_t>(x)); };
+    return hash_ids(bits(a.x) << 32 | bits(a.y), bits(a.z) << 32 | bits(b.x), bits(b.y) << 32 | bits(b.z));
 }
 
 /// PCG32 (O'Neill 2014): small state, good statistical quality, cheap to seed per pixel.

@@ -1,7 +1,6 @@
 #include "steadylight/passes/photon_gather.h"
 
 #include <algorithm>
-#include <bit>
 
 #include "steadylight/base/rng.h"
 #include "steadylight/shading/surface_point.h"
@@ -16,16 +15,6 @@ SurfacePoint face_towards(SurfacePoint sp, Vec3 d) {
     }
     return sp;
 }
-
-namespace {
-
-/// A hash of a ray's origin and direction, bit for bit.
-uint64_t ray_bits(const Ray& ray) {
-    const auto bits = [](float x) { return uint64_t(std::bit_cast<uint32_t>(x)); };
-    return hash_ids(bits(ray.o.x) << 32 | bits(ray.o.y), bits(ray.o.z) << 32 | bits(ray.d.x), bits(ray.d.y) << 32 | bits(ray.d.z));
-}
-
-}  // namespace
 
 GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
                               Visibility visibility, Ray ray) {
@@ -43,7 +32,7 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         // Numbers of this ray's own: rays that meet one primitive must not share a choice (with
         // the fixed gather directions, every record on a wall casts rays of the same directions).
         // The same ray gets the same numbers in every frame.
-        Pcg32 rng(hash_ids(ray_bits(ray), uint64_t(depth), uint64_t(hit->primitive), uint64_t(surface.object)));
+        Pcg32 rng(hash_ids(hash_bits(ray.o, ray.d), uint64_t(depth), uint64_t(hit->primitive), uint64_t(surface.object)));
         if (bsdf->is_diffuse()) {
             const SurfacePoint facing = face_towards(surface, ray.d);
             const std::optional<Rgb> E = photons.lookup(surface.p, facing.ng, max_radius);

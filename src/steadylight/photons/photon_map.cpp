@@ -119,17 +119,6 @@ Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& s
     return sum / ((1 - 2.0f / 3.0f) * pi * r2);
 }
 
-namespace {
-
-/// A photon's own hash, from its bits: the same photon in the static map and in a frame's.
-uint64_t photon_hash(const Photon& photon) {
-    const auto bits = [](float x) { return uint64_t(std::bit_cast<uint32_t>(x)); };
-    return hash_ids(bits(photon.p.x) << 32 | bits(photon.p.y), bits(photon.p.z) << 32 | bits(photon.wi.x),
-                    bits(photon.wi.y) << 32 | bits(photon.wi.z));
-}
-
-}  // namespace
-
 IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings,
                                      SurfaceCoverage coverage, std::shared_ptr<const StaticIrradianceReuse> reuse)
     : m_global(&global), m_settings(settings), m_coverage(std::move(coverage)), m_reuse(std::move(reuse)) {
@@ -138,7 +127,8 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
     const std::vector<Photon>& photons = global.photons();
     std::vector<Vec3> positions;
     for (size_t i = 0; i < photons.size(); ++i) {
-        const uint64_t hash = photon_hash(photons[i]);
+        // The photon's own hash: the same photon in the static map and in a frame's.
+        const uint64_t hash = hash_bits(photons[i].p, photons[i].wi);
         if (hash % uint64_t(stride) != 0) continue;
         m_photon.push_back(uint32_t(i));
         m_hash.push_back(hash);
