@@ -29,13 +29,11 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     stats.irradiance_records = built.records_added;
 
     // Pass 2b: shade every pixel.
-    const auto gather = make_point_gather(context, irradiance_photons, max_radius, settings.gather);
-    const auto rough_gather = make_point_gather(context, irradiance_photons, max_radius, rough_gather_settings(settings.gather));
+    const PointFallbacks fallback = make_point_fallbacks(context, irradiance_photons, max_radius, settings.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers*) {
         return remembered(pixel.memo, pixel.reach, sp, n, [&] {
-            const auto& fallback = pixel.minor_branch ? rough_gather : gather;
-            return PixelMemo::Values{cached_irradiance(cache, sp, n, fallback, fallbacks, gather_rays)};
+            return PixelMemo::Values{cached_irradiance(cache, sp, n, fallback.at(pixel.share), fallbacks, gather_rays)};
         })[0];
     };
     ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {

@@ -108,13 +108,12 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
                             const PhotonMappingSettings& photon, const LocalizedSettings& localized, PixelReuse reuse,
                             FrameStats& stats) {
     const float max_radius = photon.irradiance_estimate.max_radius;
-    const auto full_gather = make_point_gather(context, lighting.irradiance, max_radius, photon.gather);
-    const auto rough_gather = make_point_gather(context, lighting.irradiance, max_radius, rough_gather_settings(photon.gather));
+    const PointFallbacks fallback = make_point_fallbacks(context, lighting.irradiance, max_radius, photon.gather);
     const auto influence_at = [&](int x, int y) { return lighting.influence.values.empty() ? 0.0f : lighting.influence.at(x, y); };
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     const auto transported = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n, const PixelSample& pixel) {
         std::atomic<long> gathered = 0, rays = 0;
-        const Rgb E = cached_irradiance(cache, sp, n, pixel.minor_branch ? rough_gather : full_gather, gathered, rays);
+        const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays);
         if (gathered && pixel.trace) pixel.trace->flags |= PixelTrace::gather;
         fallbacks += gathered, gather_rays += rays;
         return E;

@@ -31,7 +31,9 @@ TEST(FramePhotons, IrradianceTakenFromTheStaticPhotonsIsTheEstimatedOne) {
             const std::optional<Rgb> a = composed.irradiance.lookup(photons[i].p, photons[i].n, 0.5f);
             const std::optional<Rgb> b = traced.irradiance.lookup(photons[i].p, photons[i].n, 0.5f);
             ASSERT_EQ(a.has_value(), b.has_value()) << what << ", photon " << i;
-            if (a) ASSERT_TRUE(a->r == b->r && a->g == b->g && a->b == b->b) << what << ", photon " << i;
+            if (a) {
+                ASSERT_TRUE(a->r == b->r && a->g == b->g && a->b == b->b) << what << ", photon " << i;
+            }
         }
         // Both ways were taken: values reused, and values estimated again where photons changed.
         EXPECT_GT(composed.irradiance.reused(), long(composed.irradiance.size()) / 20) << what;

@@ -16,6 +16,21 @@ SurfacePoint face_towards(SurfacePoint sp, Vec3 d) {
     return sp;
 }
 
+namespace {
+
+/// A final gather at any surface point, seeing everything.
+std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
+                                                                        const IrradiancePhotons& photons, float max_radius,
+                                                                        const GatherSettings& gather) {
+    return [&context, &photons, max_radius, gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
+        return final_gather(sp.p, n, sp.ng, dirs, gather, [&](const Ray& r) {
+            return gather_from_photons(context, photons, max_radius, Visibility::everything, r);
+        });
+    };
+}
+
+}  // namespace
+
 GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
                               Visibility visibility, Ray ray) {
     GatherHit result;
@@ -113,20 +128,17 @@ CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuil
         });
 }
 
-std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
-                                                                        const IrradiancePhotons& photons, float max_radius,
-                                                                        const GatherSettings& gather) {
-    return [&context, &photons, max_radius, gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
-        return final_gather(sp.p, n, sp.ng, dirs, gather, [&](const Ray& r) {
-            return gather_from_photons(context, photons, max_radius, Visibility::everything, r);
-        });
-    };
-}
-
-GatherSettings rough_gather_settings(GatherSettings gather) {
-    gather.theta_strata = std::max(2, gather.theta_strata / 4);
-    gather.phi_strata = std::max(4, gather.phi_strata / 4);
-    return gather;
+PointFallbacks make_point_fallbacks(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
+                                    const GatherSettings& gather) {
+    GatherSettings rough = gather;
+    rough.theta_strata = std::max(2, gather.theta_strata / 4);
+    rough.phi_strata = std::max(4, gather.phi_strata / 4);
+    return {make_point_gather(context, photons, max_radius, gather), make_point_gather(context, photons, max_radius, rough),
+            [&photons, max_radius](const SurfacePoint& sp, Vec3) {
+                GatherResult result;
+                result.record.E = photons.lookup(sp.p, sp.ng, max_radius).value_or(Rgb{});
+                return result;
+            }};
 }
 
 Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 
 #include "steadylight/base/image.h"
@@ -50,13 +51,25 @@ struct PhotonCacheBuild {
 };
 CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build);
 
-/// A final gather at any surface point (seeing everything), for points no record covers.
-std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
-                                                                        const IrradiancePhotons& photons, float max_radius,
-                                                                        const GatherSettings& gather);
+/// How much a camera ray's diffuse point counts in its pixel, which decides how its indirect light
+/// is estimated where no record reaches it.
+enum class BranchShare : uint8_t {
+    whole,   // a full gather
+    glossy,  // one of a glossy surface's several bounces: a gather with a sixteenth of the rays
+    minor,   // beyond glass's reflection (a few percent): the irradiance at the nearest irradiance
+             // photon, read as a gather ray reads it at its end; no ray traced
+};
 
-/// Gather settings with a sixteenth of the rays, for points that count little.
-GatherSettings rough_gather_settings(GatherSettings gather);
+/// The estimates of indirect irradiance at points no record reaches (seeing everything), one per
+/// BranchShare.
+struct PointFallbacks {
+    std::function<GatherResult(const SurfacePoint&, Vec3)> gather, rough_gather, look_up;
+    const std::function<GatherResult(const SurfacePoint&, Vec3)>& at(BranchShare share) const {
+        return share == BranchShare::minor ? look_up : share == BranchShare::glossy ? rough_gather : gather;
+    }
+};
+PointFallbacks make_point_fallbacks(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
+                                    const GatherSettings& gather);
 
 /// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
 /// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.

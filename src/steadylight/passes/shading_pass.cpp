@@ -248,11 +248,11 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         emission == Emission::sampled && is_flat_mirror(surface.object) ? Emission::sampled_in_mirror : Emission::counted;
     // What the bounce sees keeps this camera ray's light strata: each camera ray still reaches
     // at most one diffuse point along each branch.
-    const auto follow = [&](const Bounce& bounce, float share, bool minor) {
+    const auto follow = [&](const Bounce& bounce, float weight, BranchShare share) {
         PixelSample branch = pixel;
-        branch.minor_branch = pixel.minor_branch || minor;
+        branch.share = std::max(pixel.share, share);
         const Emission next = bounce.sample.is_delta ? delta_emission : Emission::sampled;
-        c.specular += bounce.sample.weight * share * shade(bounce.ray, depth + 1, next, branch, strata, rng).sum();
+        c.specular += bounce.sample.weight * weight * shade(bounce.ray, depth + 1, next, branch, strata, rng).sum();
     };
     const float u_lobe = rng.next_float();
     const Vec2 u = rng.next_vec2();
@@ -261,13 +261,14 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         // the probability sample() gives it (the first lobe for u_lobe 0, the last just below
         // 1), rather than one chosen at random, whose noise would show through every glass
         // object. A single lobe (a mirror, total internal reflection) is followed once.
+        const auto share_of = [](const Bounce& lobe) { return lobe.sample.pdf < 0.5f ? BranchShare::minor : BranchShare::whole; };
         const std::optional<Bounce> first = sample_bounce(bsdf, surface, ray.d, u, 0.0f, TransportMode::radiance);
         if (first && first->sample.pdf < 1) {
-            follow(*first, first->sample.pdf, first->sample.pdf < 0.5f);
+            follow(*first, first->sample.pdf, share_of(*first));
             const std::optional<Bounce> last = sample_bounce(bsdf, surface, ray.d, u, 0x1.fffffep-1f, TransportMode::radiance);
-            if (last) follow(*last, last->sample.pdf, last->sample.pdf < 0.5f);
+            if (last) follow(*last, last->sample.pdf, share_of(*last));
         } else if (first) {
-            follow(*first, 1, false);
+            follow(*first, 1, BranchShare::whole);
         }
         return c;
     }
@@ -279,7 +280,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         const std::optional<Bounce> bounce = k == 0 ? sample_bounce(bsdf, surface, ray.d, u, u_lobe, TransportMode::radiance)
                                                     : sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), rng.next_float(),
                                                                     TransportMode::radiance);
-        if (bounce) follow(*bounce, 1.0f / float(bounces), bounces > 1);
+        if (bounce) follow(*bounce, 1.0f / float(bounces), bounces > 1 ? BranchShare::glossy : BranchShare::whole);
     }
     return c;
 }

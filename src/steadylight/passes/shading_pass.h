@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "steadylight/base/image.h"
+#include "steadylight/passes/photon_gather.h"
 #include "steadylight/photons/photon_map.h"
 #include "steadylight/shading/frame_context.h"
 #include "steadylight/shading/surface_point.h"
@@ -136,9 +137,10 @@ struct PixelSample {
     PixelMemo* memo = nullptr;
     PixelMemo* caustic_memo = nullptr;
     float reach = 0;
-    /// Reached through the less likely of two lobes both followed (glass's reflection): it counts
-    /// for little, so where no record reaches a rough gather will do.
-    bool minor_branch = false;
+    /// How much the point counts in its pixel: less beyond glass's reflection (the less likely of
+    /// two lobes both followed) or one of several glossy bounces, where no record reaches a
+    /// cheaper estimate then does (photon_gather.h).
+    BranchShare share = BranchShare::whole;
     /// What the pixel's shading goes through, when the static frame is being made.
     PixelTrace* trace = nullptr;
     StaticFrame* kept = nullptr;  // ...and where it keeps the pixel's look-ups
