@@ -80,11 +80,13 @@ TEST(PhotonGather, RaysOffACoatBringTheCoatsAlbedoOfWhatItReflects) {
 // reflectance R = 4% at each face (incoherent multiple reflections): 0.8. Gather rays once
 // followed 4 bounces and brought back nothing here; in rough glass, which holds light by total
 // internal reflection for dozens of bounces, that lost 1.2% of blender_glass's light.
-// Measured 0.790 (one pane: 0.9175 of 0.9231), about 0.3% low per face crossed: not explained.
+// The panes are smooth glass: MaterialDesc's default roughness (0.3) made them rough, and a rough
+// pane transmits less at normal incidence (light its microfacets turn to grazing angles reflects
+// back, and single-scattering GGX loses a little): 0.790 with it, 0.624 at roughness 0.6.
 TEST(PhotonGather, RaysCrossAStackOfGlassPanes) {
     SceneDesc desc = make_empty_scene({0, 0.5f, -3}, {0, 0, 0});
     add_object(desc, make_quad({-10, 1, -10}, {20, 0, 0}, {0, 0, 20}), add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}}));
-    const int glass = add_material(desc, {.type = MaterialType::dielectric, .ior = 1.5f});
+    const int glass = add_material(desc, {.type = MaterialType::dielectric, .ior = 1.5f, .roughness = 0});
     constexpr int panes = 3;
     for (int i = 0; i < panes; ++i) add_object(desc, make_box({0, 0.3f + 0.2f * float(i), 0}, {8, 0.02f, 8}), glass);
     const Scene scene(std::move(desc));
@@ -102,7 +104,7 @@ TEST(PhotonGather, RaysCrossAStackOfGlassPanes) {
     }
     const double R = 0.04, expected = (1 - R) / (1 + (2 * panes - 1) * R);
     std::printf("through %d panes: %.4f of the ceiling's radiance (expected %.4f)\n", panes, below / above, expected);
-    EXPECT_NEAR(below / above, expected, 0.04);
+    EXPECT_NEAR(below / above, expected, 0.01);  // 3 standard deviations of 16,000 rays
 }
 
 }  // namespace
