@@ -107,5 +107,48 @@ TEST(PhotonGather, RaysCrossAStackOfGlassPanes) {
     EXPECT_NEAR(below / above, expected, 0.01);  // 3 standard deviations of 16,000 rays
 }
 
+// Where no record reaches, a point estimates its irradiance as much as it counts in its pixel
+// (BranchShare): a full gather, a gather with a sixteenth of the rays, or, beyond glass's
+// reflection, the irradiance at the nearest irradiance photon, no ray traced. All three estimate
+// the same irradiance. Under a ceiling, a white floor whose photons give it irradiance 1 sends up
+// radiance rho / pi, so the ceiling receives about rho (the planes, 20 m wide and 1 m apart, fill
+// nearly all of its hemisphere); the ceiling's own photons say rho too.
+TEST(PhotonGather, EveryBranchShareEstimatesTheSameIrradiance) {
+    SceneDesc desc = make_empty_scene({0, 0.5f, -3}, {0, 0, 0});
+    const float rho = 0.5f;
+    const int white = add_material(desc, {.reflectance = {rho, rho, rho}});
+    add_object(desc, make_quad({-10, 0, -10}, {0, 0, 20}, {20, 0, 0}), white);  // the floor, facing up
+    add_object(desc, make_quad({-10, 1, -10}, {20, 0, 0}, {0, 0, 20}), white);  // the ceiling, facing down
+    const Scene scene(std::move(desc));
+    const PreparedFrame frame(scene, 0);
+    const FrameContext& context = frame.context();
+
+    constexpr int count = 80'000;  // on each plane, over 400 m^2
+    std::vector<Photon> stored;
+    for (int i = 0; i < count; ++i) {
+        const float x = -10 + 20 * halton(0, uint64_t(i)), z = -10 + 20 * halton(1, uint64_t(i));
+        stored.push_back({{x, 0, z}, {0, 1, 0}, {0, 1, 0}, Rgb{1, 1, 1} * (400.0f / count)});
+        stored.push_back({{x, 1, z}, {0, -1, 0}, {0, -1, 0}, Rgb{1, 1, 1} * (400.0f * rho / count)});
+    }
+    const PhotonMap map(std::move(stored), 2 * count);
+    const IrradiancePhotons photons(map, 1, {.k = 50, .max_radius = 0.5f}, {});
+    const GatherSettings gather;
+    const PointFallbacks fallbacks = make_point_fallbacks(context, photons, 0.5f, gather);
+
+    const Ray up{{0.3f, 0.5f, -0.2f}, {0, 1, 0}};
+    const std::optional<Hit> hit = context.tracer.intersect(up);
+    ASSERT_TRUE(hit);
+    const SurfacePoint sp = face_towards(make_surface_point(scene, context.frame, up, *hit), up.d);
+    for (const BranchShare share : {BranchShare::whole, BranchShare::glossy, BranchShare::minor}) {
+        const GatherResult result = fallbacks.at(share)(sp, sp.ns);
+        const int rays = share == BranchShare::whole ? gather.theta_strata * gather.phi_strata
+                         : share == BranchShare::glossy ? gather.theta_strata * gather.phi_strata / 16
+                                                        : 0;
+        std::printf("share %d: E %.4f from %d rays (expected %.4f)\n", int(share), result.record.E.g, result.rays, rho);
+        EXPECT_EQ(result.rays, rays) << int(share);
+        EXPECT_NEAR(result.record.E.g, rho, 0.05 * rho) << int(share);
+    }
+}
+
 }  // namespace
 }  // namespace steadylight
