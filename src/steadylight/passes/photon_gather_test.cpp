@@ -14,13 +14,21 @@ using testing::add_material;
 using testing::add_object;
 using testing::make_empty_scene;
 
-/// 80,000 photons arriving from below over a 20 m x 20 m ceiling at height 1: irradiance 1.
-PhotonMap ceiling_photons() {
+/// 80,000 photons over a 20 m x 20 m horizontal plane at `height`, arriving from the side of
+/// `normal` (up or down), with power giving it `irradiance`.
+std::vector<Photon> plane_photons(float height, Vec3 normal, float irradiance) {
     constexpr int count = 80'000;
     std::vector<Photon> stored;
     for (int i = 0; i < count; ++i)
-        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), 1, -10 + 20 * halton(1, uint64_t(i))}, {0, -1, 0}, {0, -1, 0},
-                          Rgb{1, 1, 1} * (400.0f / count)});
+        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), height, -10 + 20 * halton(1, uint64_t(i))}, normal, normal,
+                          Rgb{1, 1, 1} * (400.0f * irradiance / count)});
+    return stored;
+}
+
+/// Photons arriving from below over a 20 m x 20 m ceiling at height 1: irradiance 1.
+PhotonMap ceiling_photons() {
+    std::vector<Photon> stored = plane_photons(1, {0, -1, 0}, 1);
+    const int count = int(stored.size());
     return PhotonMap(std::move(stored), count);
 }
 
@@ -124,14 +132,11 @@ TEST(PhotonGather, EveryBranchShareEstimatesTheSameIrradiance) {
     const PreparedFrame frame(scene, 0);
     const FrameContext& context = frame.context();
 
-    constexpr int count = 80'000;  // on each plane, over 400 m^2
-    std::vector<Photon> stored;
-    for (int i = 0; i < count; ++i) {
-        const float x = -10 + 20 * halton(0, uint64_t(i)), z = -10 + 20 * halton(1, uint64_t(i));
-        stored.push_back({{x, 0, z}, {0, 1, 0}, {0, 1, 0}, Rgb{1, 1, 1} * (400.0f / count)});
-        stored.push_back({{x, 1, z}, {0, -1, 0}, {0, -1, 0}, Rgb{1, 1, 1} * (400.0f * rho / count)});
-    }
-    const PhotonMap map(std::move(stored), 2 * count);
+    std::vector<Photon> stored = plane_photons(0, {0, 1, 0}, 1);
+    const std::vector<Photon> ceiling = plane_photons(1, {0, -1, 0}, rho);
+    stored.insert(stored.end(), ceiling.begin(), ceiling.end());
+    const int count = int(stored.size());
+    const PhotonMap map(std::move(stored), count);
     const IrradiancePhotons photons(map, 1, {.k = 50, .max_radius = 0.5f}, {});
     const GatherSettings gather;
     const PointFallbacks fallbacks = make_point_fallbacks(context, photons, 0.5f, gather);
