@@ -10,12 +10,12 @@
 #include <cstdio>
 #include <map>
 
+#include "scene_bench_options.h"
 #include "steadylight/base/freed_memory.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/methods/photon_mapping.h"
 #include "steadylight/passes/frame_pass.h"
 #include "steadylight/quality/image_error.h"
-#include "scene_bench_options.h"
 
 using namespace steadylight;
 
@@ -52,8 +52,10 @@ void run_scene(const std::string& name, const Options& options) {
         const PlacedFrame placed(scene, tracer, bsdfs, f);
         const FrameContext& context = placed.context();
         const PhotonFrame photon = render_photon_mapped(context, photon_settings);
-        const LocalizedFrame local = run_frame_pass(context, solution, photon_settings, localized, StaticCacheUse::corrected);
-        const LocalizedFrame freeze = run_frame_pass(context, solution, photon_settings, localized, StaticCacheUse::frozen);
+        const LocalizedFrame local =
+            run_frame_pass(context, solution, photon_settings, localized, StaticCacheUse::corrected);
+        const LocalizedFrame freeze =
+            run_frame_pass(context, solution, photon_settings, localized, StaticCacheUse::frozen);
         totals["photon"].add(photon.stats);
         totals["localized"].add(local.stats);
         totals["frozen"].add(freeze.stats);
@@ -64,11 +66,12 @@ void run_scene(const std::string& name, const Options& options) {
     }
     std::fprintf(stderr, "\n");
 
-    std::printf("\n%s, %dx%d, %d frames; static pass %.2f s (%ld records)\n", name.c_str(), options.width, options.height,
-                frames, static_s, solution.records());
+    std::printf("\n%s, %dx%d, %d frames; static pass %.2f s (%ld records)\n", name.c_str(), options.width,
+                options.height, frames, static_s, solution.records());
     std::printf("per frame (means)        %12s %12s %12s   photon/localized\n", "photon", "frozen", "localized");
     const auto row = [&](const char* label, auto get) {
-        const double p = get(totals["photon"]) / frames, z = get(totals["frozen"]) / frames, l = get(totals["localized"]) / frames;
+        const double p = get(totals["photon"]) / frames, z = get(totals["frozen"]) / frames,
+                     l = get(totals["localized"]) / frames;
         std::printf("%-24s %12.3f %12.3f %12.3f   %8.1fx\n", label, p, z, l, l > 0 ? p / l : 0.0);
     };
     row("records (Table 1)", [](const Totals& t) { return t.records; });

@@ -11,12 +11,12 @@
 #include <cstring>
 #include <memory>
 
+#include "scene_bench_options.h"
 #include "steadylight/base/freed_memory.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/methods/photon_mapping.h"
 #include "steadylight/passes/frame_pass.h"
 #include "steadylight/passes/frame_photons.h"
-#include "scene_bench_options.h"
 
 using namespace steadylight;
 
@@ -41,7 +41,8 @@ TimedPhotons time_photon_phase(const FrameContext& context, const PhotonMappingS
     const Stopwatch time;
     auto photons = std::make_unique<FramePhotons>(context, settings, stats, paths);
     const double seconds = time.elapsed_s();
-    return {std::move(photons), {stats.photon_tracing_s, seconds, stats.retraced_photon_paths, stats.dynamic_photons_stored}};
+    return {std::move(photons),
+            {stats.photon_tracing_s, seconds, stats.retraced_photon_paths, stats.dynamic_photons_stored}};
 }
 
 bool same_maps(const FramePhotons& a, const FramePhotons& b) {
@@ -66,8 +67,8 @@ void compare_photon_phases(const Scene& scene, RayTracer& tracer, const Bsdfs& b
         const bool equal = same_maps(*whole_run.photons, *reuse_run.photons);
         same += equal;
         std::printf("%5d %12.4f %12.4f %12.4f %12.4f %10ld %9ld %10ld %6s\n", f, whole.phase_s, reuse.phase_s,
-                    whole.with_index_s, reuse.with_index_s, reuse.traced_paths, whole.traced_paths, reuse.dynamic_photons,
-                    equal ? "yes" : "NO");
+                    whole.with_index_s, reuse.with_index_s, reuse.traced_paths, whole.traced_paths,
+                    reuse.dynamic_photons, equal ? "yes" : "NO");
         whole_sum.phase_s += whole.phase_s, whole_sum.with_index_s += whole.with_index_s;
         reuse_sum.phase_s += reuse.phase_s, reuse_sum.with_index_s += reuse.with_index_s;
         reuse_sum.traced_paths += reuse.traced_paths, whole_sum.traced_paths += whole.traced_paths;
@@ -82,7 +83,8 @@ void compare_photon_phases(const Scene& scene, RayTracer& tracer, const Bsdfs& b
 
 /// The look-ups of the irradiance photons (k = 64 at every 4th global photon) through the
 /// composed map's two trees and through one tree built over the whole map: time and agreement.
-void compare_look_ups(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs, const StaticPhotonPaths& paths, int frame) {
+void compare_look_ups(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs, const StaticPhotonPaths& paths,
+                      int frame) {
     const PlacedFrame placed(scene, tracer, bsdfs, frame);
     const PhotonMap composed = compose_photons(placed.context(), paths).maps.global;
     const Stopwatch build_time;
@@ -103,19 +105,22 @@ void compare_look_ups(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
         rebuilt_s = std::min(rebuilt_s, time_look_ups(rebuilt, sum_rebuilt));
         composed_s = std::min(composed_s, time_look_ups(composed, sum_composed));
     }
-    std::printf("frame %d look-ups (k 64 at every 4th of %zu photons, 1 thread, best of 3): rebuilt tree %.3f s (built in %.3f s), "
-                "composed %.3f s (%zu photons in its own tree), %s\n",
-                frame, composed.size(), rebuilt_s, build_s, composed_s, composed.indexed_here(),
-                sum_rebuilt == sum_composed ? "same distances" : "DIFFERENT");
+    std::printf(
+        "frame %d look-ups (k 64 at every 4th of %zu photons, 1 thread, best of 3): rebuilt tree %.3f s (built in %.3f "
+        "s), "
+        "composed %.3f s (%zu photons in its own tree), %s\n",
+        frame, composed.size(), rebuilt_s, build_s, composed_s, composed.indexed_here(),
+        sum_rebuilt == sum_composed ? "same distances" : "DIFFERENT");
 }
 
 bool same_image(const Image& a, const Image& b) {
-    return a.pixels.size() == b.pixels.size() && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
+    return a.pixels.size() == b.pixels.size() &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
 }
 
 /// Whole frames of the photon and localized methods, with and without reuse.
-void compare_methods(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs, std::shared_ptr<const StaticPhotonPaths> paths,
-                     const PhotonMappingSettings& settings, int count) {
+void compare_methods(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
+                     std::shared_ptr<const StaticPhotonPaths> paths, const PhotonMappingSettings& settings, int count) {
     const Stopwatch static_time;
     StaticSolution solution{run_segment_pass(scene, tracer, {0, scene.frame_count() - 1}, settings)};
     std::printf("static cache %.2f s\n%5s %-10s %12s %12s %12s %12s %6s\n", static_time.elapsed_s(), "frame", "method",
@@ -127,13 +132,17 @@ void compare_methods(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs, 
         const PhotonFrame a = render_photon_mapped(placed.context(), settings);
         const PhotonFrame b = render_photon_mapped(placed.context(), settings, paths.get());
         std::printf("%5d %-10s %12.4f %12.4f %12.3f %12.3f %6s\n", f, "photon", a.stats.photon_tracing_s,
-                    b.stats.photon_tracing_s, a.stats.total_s, b.stats.total_s, same_image(a.beauty, b.beauty) ? "yes" : "NO");
+                    b.stats.photon_tracing_s, a.stats.total_s, b.stats.total_s,
+                    same_image(a.beauty, b.beauty) ? "yes" : "NO");
         solution.photon_paths = nullptr;
-        const LocalizedFrame c = run_frame_pass(placed.context(), solution, settings, localized, StaticCacheUse::corrected);
+        const LocalizedFrame c =
+            run_frame_pass(placed.context(), solution, settings, localized, StaticCacheUse::corrected);
         solution.photon_paths = paths;
-        const LocalizedFrame d = run_frame_pass(placed.context(), solution, settings, localized, StaticCacheUse::corrected);
+        const LocalizedFrame d =
+            run_frame_pass(placed.context(), solution, settings, localized, StaticCacheUse::corrected);
         std::printf("%5d %-10s %12.4f %12.4f %12.3f %12.3f %6s\n", f, "localized", c.stats.photon_tracing_s,
-                    d.stats.photon_tracing_s, c.stats.total_s, d.stats.total_s, same_image(c.beauty, d.beauty) ? "yes" : "NO");
+                    d.stats.photon_tracing_s, c.stats.total_s, d.stats.total_s,
+                    same_image(c.beauty, d.beauty) ? "yes" : "NO");
     }
 }
 

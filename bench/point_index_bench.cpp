@@ -4,8 +4,8 @@
 // k = 1: the irradiance-photon look-up of every final-gather ray). Checks that both find the
 // same neighbours. Single thread, so the figures compare the trees, not the scheduler. Prints,
 // asserts nothing. Run: build/point_index_bench
-#include <nanoflann.hpp>
 #include <tbb/global_control.h>
+#include <nanoflann.hpp>
 
 #include <cstdio>
 
@@ -22,7 +22,9 @@ struct PointCloud {
     size_t kdtree_get_point_count() const { return points->size(); }
     float kdtree_get_pt(size_t i, size_t dim) const { return (*points)[i][int(dim)]; }
     template <class Box>
-    bool kdtree_get_bbox(Box&) const { return false; }
+    bool kdtree_get_bbox(Box&) const {
+        return false;
+    }
 };
 using NanoflannTree =
     nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointCloud>, PointCloud, 3, uint32_t>;
@@ -51,7 +53,8 @@ int main() {
     for (const Photon& photon : photons.global.photons()) points.push_back(photon.p);
     std::vector<Vec3> queries;
     for (size_t i = 0; i < points.size(); i += 4) queries.push_back(points[i]);
-    std::printf("BALL frame 0: %zu global photons, %zu queries at every 4th photon, 1 thread\n\n", points.size(), queries.size());
+    std::printf("BALL frame 0: %zu global photons, %zu queries at every 4th photon, 1 thread\n\n", points.size(),
+                queries.size());
 
     Stopwatch time;
     const PointIndex ours(points);
@@ -61,7 +64,8 @@ int main() {
     NanoflannTree theirs(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
     const double theirs_build = time.elapsed_s();
     std::printf("%-28s %12s %12s %8s\n", "", "ours", "nanoflann", "ratio");
-    std::printf("%-28s %10.1f ms %10.1f ms %7.2fx\n", "build", ours_build * 1e3, theirs_build * 1e3, theirs_build / ours_build);
+    std::printf("%-28s %10.1f ms %10.1f ms %7.2fx\n", "build", ours_build * 1e3, theirs_build * 1e3,
+                theirs_build / ours_build);
 
     for (const int k : {1, 8, 50, 300}) {
         std::vector<Neighbour> found;
@@ -78,11 +82,13 @@ int main() {
         for (size_t i = 0; i < queries.size(); i += 97) {
             ours.k_nearest(queries[i], k, 0.25f, found);
             nanoflann_k_nearest(theirs, queries[i], k, 0.25f, other);
-            mismatches += found.size() != other.size() || (!found.empty() && found.back().distance2 != other.back().distance2);
+            mismatches +=
+                found.size() != other.size() || (!found.empty() && found.back().distance2 != other.back().distance2);
         }
         const double n = double(queries.size());
         std::printf("k = %-3d within 0.5 (%5.1f found) %8.2f us %10.2f us %7.2fx  %s\n", k, double(total) / n,
-                    ours_s / n * 1e6, theirs_s / n * 1e6, theirs_s / ours_s, mismatches ? "RESULTS DIFFER" : "same results");
+                    ours_s / n * 1e6, theirs_s / n * 1e6, theirs_s / ours_s,
+                    mismatches ? "RESULTS DIFFER" : "same results");
     }
     return 0;
 }

@@ -6,8 +6,8 @@
 //   Per animated scene and method: temporal noise over the four common-random-numbers pairs,
 //   over all pixels whose true change is small and "far" (where the light does not change), the
 //   mean signed change against the reference's over the far pixels, the method's own mean change
-//   there (free of the references' noise), and the references' own noise floor (the middle pair against the same pair with another seed).
-//   The still references' own per-pixel noise, where the middle frame's common-random-numbers
+//   there (free of the references' noise), and the references' own noise floor (the middle pair against the same pair
+//   with another seed). The still references' own per-pixel noise, where the middle frame's common-random-numbers
 //   reference exists with two seeds: RMSE(seed 0 - seed 1) / sqrt(2) is a 1024-sample frame's
 //   noise, half that a 4096-sample one's (noise falls as 1 / sqrt(samples)). A method's error
 //   against a noisy reference is sqrt(its own error^2 + the reference's noise^2), as the two are
@@ -107,7 +107,8 @@ public:
     std::pair<Image, double> render(Method method, int frame) {
         MethodSettings settings;
         settings.method = method;
-        const StaticSolution* solution = method_info(method).has_static_pass ? &static_solution(frame, settings) : nullptr;
+        const StaticSolution* solution =
+            method_info(method).has_static_pass ? &static_solution(frame, settings) : nullptr;
         const PlacedFrame placed(m_scene, m_tracer, m_bsdfs, frame);
         const Stopwatch time;
         Image beauty = method_info(method).render_frame(placed.context(), solution, settings).beauty;
@@ -124,7 +125,10 @@ private:
         const Segment& segment = m_scene.segment_of(frame);
         auto found = m_solutions.find(segment.first);
         if (found == m_solutions.end())
-            found = m_solutions.emplace(segment.first, StaticSolution{run_segment_pass(m_scene, m_tracer, segment, settings.photon)}).first;
+            found = m_solutions
+                        .emplace(segment.first,
+                                 StaticSolution{run_segment_pass(m_scene, m_tracer, segment, settings.photon)})
+                        .first;
         return found->second;
     }
 
@@ -139,7 +143,8 @@ private:
 /// are missing.
 std::optional<ImageError> reference_noise(SceneRenderer& renderer, const std::string& name) {
     const int middle = renderer.scene().frame_count() / 2;
-    const std::optional<Image> seed0 = read_reference("crn", name, middle), seed1 = read_reference("crn_seed1", name, middle);
+    const std::optional<Image> seed0 = read_reference("crn", name, middle),
+                               seed1 = read_reference("crn_seed1", name, middle);
     if (!seed0 || !seed1) return std::nullopt;
     ImageError noise = image_error(*seed1, *seed0, renderer.emitters(middle));
     const double to_one_4096_sample_frame = std::sqrt(0.5) * std::sqrt(1024.0 / 4096.0);
@@ -160,7 +165,8 @@ void print_still_figures(SceneRenderer& renderer, const std::string& name, const
     for (const int frame : frames > 1 ? std::vector<int>{0, frames / 2} : std::vector<int>{0}) {
         const std::optional<Image> reference = read_reference("", name, frame);
         if (!reference) {
-            std::printf("%-12s frame %2d: no reference (%s)\n", name.c_str(), frame, reference_file("", name, frame).c_str());
+            std::printf("%-12s frame %2d: no reference (%s)\n", name.c_str(), frame,
+                        reference_file("", name, frame).c_str());
             continue;
         }
         const PixelMask emitters = renderer.emitters(frame);
@@ -182,7 +188,8 @@ void print_still_figures(SceneRenderer& renderer, const std::string& name, const
                         frame, std::string(method_info(method).name).c_str(), 100 * e.pixel_rmse, 100 * e.block_rmse,
                         e.mean_ratio, seconds);
             if (noise)
-                std::printf("  without the reference's noise %6.2f%% / %5.2f%%", 100 * without_noise(e.pixel_rmse, noise->pixel_rmse),
+                std::printf("  without the reference's noise %6.2f%% / %5.2f%%",
+                            100 * without_noise(e.pixel_rmse, noise->pixel_rmse),
                             100 * without_noise(e.block_rmse, noise->block_rmse));
             std::printf("\n");
         }
@@ -200,7 +207,8 @@ void print_temporal_noise(SceneRenderer& renderer, const std::string& name, cons
         for (const int frame : {first, first + 1}) {
             std::optional<Image> reference = read_reference("crn", name, frame);
             if (!reference) {
-                std::printf("%-12s temporal noise: no reference (%s)\n", name.c_str(), reference_file("crn", name, frame).c_str());
+                std::printf("%-12s temporal noise: no reference (%s)\n", name.c_str(),
+                            reference_file("crn", name, frame).c_str());
                 return;
             }
             references.push_back(std::move(*reference));
@@ -215,15 +223,19 @@ void print_temporal_noise(SceneRenderer& renderer, const std::string& name, cons
         std::vector<FramePair> pairs;
         for (size_t i = 0; i < images.size(); i += 2) pairs.push_back({images[i], images[i + 1]});
         const TemporalNoise noise = temporal_noise(pairs, reference_pairs, emitters);
-        std::printf("%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  far own %.5f  (%ld / %ld pixels)\n",
-                    name.c_str(), std::string(method_info(method).name).c_str(), noise.all, noise.far, noise.far_signed,
-                    noise.far_own, noise.all_pixels, noise.far_pixels);
+        std::printf(
+            "%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  far own %.5f  (%ld / %ld pixels)\n",
+            name.c_str(), std::string(method_info(method).name).c_str(), noise.all, noise.far, noise.far_signed,
+            noise.far_own, noise.all_pixels, noise.far_pixels);
     }
-    const std::optional<Image> a = read_reference("crn_seed1", name, frames / 2), b = read_reference("crn_seed1", name, frames / 2 + 1);
+    const std::optional<Image> a = read_reference("crn_seed1", name, frames / 2),
+                               b = read_reference("crn_seed1", name, frames / 2 + 1);
     if (a && b) {
         const TemporalNoise floor = temporal_noise({{*a, *b}}, {reference_pairs[2]}, emitters);
-        std::printf("%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  far own %.5f  (the references' own noise floor)\n",
-                    name.c_str(), "reference", floor.all, floor.far, floor.far_signed, floor.far_own);
+        std::printf(
+            "%-12s temporal noise %-10s all %.5f  far %.5f  far signed %+.5f  far own %.5f  (the references' own noise "
+            "floor)\n",
+            name.c_str(), "reference", floor.all, floor.far, floor.far_signed, floor.far_own);
     }
 }
 

@@ -26,8 +26,10 @@ inline SceneBenchOptions parse_scene_bench_options(int argc, char** argv, int de
     SceneBenchOptions o;
     o.frames = default_frames;
     for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--frames")) o.frames = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--size")) std::sscanf(argv[i + 1], "%dx%d", &o.width, &o.height);
+        if (!std::strcmp(argv[i], "--frames"))
+            o.frames = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--size"))
+            std::sscanf(argv[i + 1], "%dx%d", &o.width, &o.height);
         else if (!std::strcmp(argv[i], "--scenes")) {
             o.scenes.clear();
             std::stringstream list(argv[i + 1]);

@@ -56,8 +56,8 @@ inline const fs::path& folder() {
 /// Writes the input as `name` in the folder and returns its path.
 inline std::string write_input(const uint8_t* data, size_t size, const std::string& name) {
     const fs::path path = folder() / name;
-    std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data),
-                                                                  std::streamsize(size));
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(data), std::streamsize(size));
     return path.string();
 }
 

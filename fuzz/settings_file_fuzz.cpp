@@ -9,8 +9,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace steadylight;
     const nlohmann::json earlier = nlohmann::json::parse(data, data + size, nullptr, false);
-    nlohmann::json same = {{"render", earlier.is_object() ? earlier.value("render", nlohmann::json()) : nlohmann::json()},
-                           {"frames", "2-4"}};
+    nlohmann::json same = {
+        {"render", earlier.is_object() ? earlier.value("render", nlohmann::json()) : nlohmann::json()},
+        {"frames", "2-4"}};
     const nlohmann::json other = {{"render", {{"method", "photon"}, {"format_version", settings_format_version}}},
                                   {"frames", "0"}};
     for (const nlohmann::json& now : {same, other}) {

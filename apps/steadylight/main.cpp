@@ -1,24 +1,24 @@
 // The steadylight command line: parses flags into RenderSettings and calls the library.
 // Errors are caught once, here: the message goes to stderr and the exit code is 1; Ctrl-C ends
 // a render cleanly with exit code 130 (run/interrupt.h).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <set>
 
-#include "steadylight/base/freed_memory.h"
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
+#include "steadylight/base/freed_memory.h"
 #include "steadylight/farm/submit.h"
 #include "steadylight/render.h"
 #include "steadylight/report/report.h"
@@ -52,12 +52,16 @@ struct RawOptions {
 /// The options that shape the written files: EXR pixel type, PNG view transform, video.
 void add_output_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
     command->add_option("--exr-type", raw.exr_type, "EXR channels: half (16-bit) or float (32-bit)")
-        ->capture_default_str()->check(CLI::IsMember({"half", "float"}));
-    command->add_flag_callback("--exr-float", [&raw] { raw.exr_type = "float"; }, "Same as --exr-type float");
+        ->capture_default_str()
+        ->check(CLI::IsMember({"half", "float"}));
+    command->add_flag_callback(
+        "--exr-float", [&raw] { raw.exr_type = "float"; }, "Same as --exr-type float");
     command->add_option("--exposure", settings.output.view.exposure_ev, "PNG: exposure in stops (linear x 2^EV)")
-        ->capture_default_str()->check(CLI::Range(-64.0f, 64.0f));
+        ->capture_default_str()
+        ->check(CLI::Range(-64.0f, 64.0f));
     command->add_option("--view-transform", raw.view_transform, "PNG: standard (clamp) or filmic (Hable curve)")
-        ->capture_default_str()->check(CLI::IsMember({"standard", "filmic"}));
+        ->capture_default_str()
+        ->check(CLI::IsMember({"standard", "filmic"}));
     command->add_flag("!--no-dither", settings.output.view.dither, "PNG: round without the fixed dither");
     command->add_option("--video", settings.output.video_file,
                         "Encode the frames' PNGs as an H.264 MP4 with ffmpeg after rendering");
@@ -71,18 +75,27 @@ void add_method_options(CLI::App* command, RenderSettings& settings, RawOptions&
     command->add_option("--out", settings.out_dir, "Output folder")->capture_default_str();
     PhotonMappingSettings& photon = settings.photon;
     command->add_option("--photons", photon.photons.global_photons, "photon paths emitted per frame for the global map")
-        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
-    command->add_option("--caustic-photons", photon.photons.caustic_photons, "photon paths emitted per frame for the caustic map")
-        ->capture_default_str()->check(CLI::Range(0L, 1L << 34));
+        ->capture_default_str()
+        ->check(CLI::Range(0L, 1L << 34));
+    command
+        ->add_option("--caustic-photons", photon.photons.caustic_photons,
+                     "photon paths emitted per frame for the caustic map")
+        ->capture_default_str()
+        ->check(CLI::Range(0L, 1L << 34));
     raw.gather_samples = photon.gather.theta_strata * photon.gather.phi_strata;
-    command->add_option("--gather-samples", raw.gather_samples, "final-gather rays per record, as M x 2M strata (rounded)")
-        ->capture_default_str()->check(CLI::Range(8, 1 << 16));
+    command
+        ->add_option("--gather-samples", raw.gather_samples, "final-gather rays per record, as M x 2M strata (rounded)")
+        ->capture_default_str()
+        ->check(CLI::Range(8, 1 << 16));
     command->add_option("--cache-accuracy", photon.cache.accuracy, "Ward's a; smaller = more records")
-        ->capture_default_str()->check(CLI::Range(0.01f, 2.0f));
+        ->capture_default_str()
+        ->check(CLI::Range(0.01f, 2.0f));
     command->add_option("--cache-spacing", photon.cache.min_spacing_px, "smallest reach of a record in pixels")
-        ->capture_default_str()->check(CLI::Range(0.5f, 1000.0f));
+        ->capture_default_str()
+        ->check(CLI::Range(0.5f, 1000.0f));
     command->add_option("--cache-max-spacing", photon.cache.max_spacing_px, "largest reach of a record in pixels")
-        ->capture_default_str()->check(CLI::Range(1.0f, 10000.0f));
+        ->capture_default_str()
+        ->check(CLI::Range(1.0f, 10000.0f));
     command->add_flag("!--jittered-gather", photon.gather.fixed_directions,
                       "new gather directions per record instead of one fixed set");
     command->add_option("--cache-file", settings.cache_file, "static cache file (default: OUT/SCENE.irrcache)");
@@ -108,45 +121,59 @@ void add_render_options(CLI::App* command, RenderSettings& settings, RawOptions&
     command->add_option("--spp", raw.spp, "Camera rays per pixel (default: 64 for path, 16 otherwise)")
         ->check(CLI::Range(1, 1 << 20));
     command->add_option("--method,--integrator", raw.method, method_help())
-        ->capture_default_str()->check(CLI::IsMember(method_name_list()));
-    command->add_option("--direct-samples", settings.photon.shading.direct_samples,
-                       "shadow rays per diffuse hit and camera ray")
-        ->capture_default_str()->check(CLI::Range(1, 4096));
-    command->add_option("--influence-photons", settings.localized.influence_photons,
-                       "localized: dynamic photons in the influence estimate")
-        ->capture_default_str()->check(CLI::Range(1, 100000));
-    command->add_option("--tau-lower", settings.localized.tau_lower,
-                       "localized: influence (relative to static indirect irradiance) below which L_t alone is used")
-        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
-    command->add_option("--tau-upper", settings.localized.tau_upper, "localized: influence above which L_y alone is used")
-        ->capture_default_str()->check(CLI::Range(0.0f, 1e6f));
+        ->capture_default_str()
+        ->check(CLI::IsMember(method_name_list()));
+    command
+        ->add_option("--direct-samples", settings.photon.shading.direct_samples,
+                     "shadow rays per diffuse hit and camera ray")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 4096));
+    command
+        ->add_option("--influence-photons", settings.localized.influence_photons,
+                     "localized: dynamic photons in the influence estimate")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
+    command
+        ->add_option("--tau-lower", settings.localized.tau_lower,
+                     "localized: influence (relative to static indirect irradiance) below which L_t alone is used")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0f, 1e6f));
+    command
+        ->add_option("--tau-upper", settings.localized.tau_upper, "localized: influence above which L_y alone is used")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0f, 1e6f));
     command->add_option("--max-depth", settings.path.max_depth, "path: maximum path length in bounces")
-        ->capture_default_str()->check(CLI::Range(0, 10000));
+        ->capture_default_str()
+        ->check(CLI::Range(0, 10000));
     command->add_flag("--fixed-seed", settings.path.fixed_seed,
-                     "path: the same random numbers per pixel and camera sample in every frame, so frames "
-                     "differ only where paths meet what moved");
-    command->add_option("--seed", settings.path.seed, "path: another seed gives independent noise (references' noise floor)")
+                      "path: the same random numbers per pixel and camera sample in every frame, so frames "
+                      "differ only where paths meet what moved");
+    command
+        ->add_option("--seed", settings.path.seed,
+                     "path: another seed gives independent noise (references' noise floor)")
         ->capture_default_str();
     command->add_flag("!--no-progress", settings.show_progress, "No progress output");
     command->add_flag("--aov", settings.aov_pngs, "Also write every EXR layer as a PNG");
     command->add_flag("!--no-reuse", settings.reuse,
-                     "photon, localized, frozen: trace every photon path in every frame instead of retracing only "
-                     "the static paths that dynamic objects meet, and (localized, still camera) shade every pixel "
-                     "instead of those the dynamic objects can change (the same images, slower; for comparison)");
+                      "photon, localized, frozen: trace every photon path in every frame instead of retracing only "
+                      "the static paths that dynamic objects meet, and (localized, still camera) shade every pixel "
+                      "instead of those the dynamic objects can change (the same images, slower; for comparison)");
 }
 
 /// The console and resume options of `render` and `bake`.
 void add_console_options(CLI::App* command, LogOptions& log) {
     command->add_flag("--quiet,-q", log.quiet, "Print errors only (no progress, no log lines)");
     command->add_option("--log-level", log.level, "Console and log file detail")
-        ->capture_default_str()->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+        ->capture_default_str()
+        ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
     command->add_option("--log", log.file, "Also append the log to FILE");
 }
 
 /// What a render that stopped early says: what is finished and how to go on.
 void print_interrupted(const RenderSummary& summary, bool overwrite) {
-    std::fprintf(stderr, "steadylight: interrupted; %zu frame(s) finished in this run%s%s, %zu left (%s).\n"
-                         "Run the same command again%s to resume: finished frames are skipped.\n",
+    std::fprintf(stderr,
+                 "steadylight: interrupted; %zu frame(s) finished in this run%s%s, %zu left (%s).\n"
+                 "Run the same command again%s to resume: finished frames are skipped.\n",
                  summary.frames_written.size(), summary.frames_written.empty() ? "" : ": ",
                  format_frame_list(summary.frames_written).c_str(), summary.frames_left.size(),
                  format_frame_list(summary.frames_left).c_str(), overwrite ? " without --overwrite" : "");
@@ -171,8 +198,9 @@ struct ForwardedOptions {
 };
 
 ForwardedOptions forwarded_options(const CLI::App& submit, const CLI::App& bake, const std::vector<std::string>& args) {
-    static const std::set<std::string> not_passed = {"--out",   "--frames", "--threads", "--video",        "--no-progress",
-                                                     "--chunk", "--partition", "--dry-run", "--cpus-per-task"};
+    static const std::set<std::string> not_passed = {"--out",       "--frames",      "--threads",
+                                                     "--video",     "--no-progress", "--chunk",
+                                                     "--partition", "--dry-run",     "--cpus-per-task"};
     ForwardedOptions forwarded;
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i].size() < 2 || args[i][0] != '-') continue;  // the scene: given to the jobs as an absolute path
@@ -182,7 +210,8 @@ ForwardedOptions forwarded_options(const CLI::App& submit, const CLI::App& bake,
         std::vector<std::string> words = {args[i]};
         if (option->get_type_size() != 0 && args[i].find('=') == std::string::npos && i + 1 < args.size())
             words.push_back(args[++i]);
-        if (std::any_of(not_passed.begin(), not_passed.end(), [&](const std::string& n) { return option->check_name(n); }))
+        if (std::any_of(not_passed.begin(), not_passed.end(),
+                        [&](const std::string& n) { return option->check_name(n); }))
             continue;
         forwarded.render.insert(forwarded.render.end(), words.begin(), words.end());
         if (bake.get_option_no_throw(name)) forwarded.bake.insert(forwarded.bake.end(), words.begin(), words.end());
@@ -202,25 +231,29 @@ void run_submit(const CLI::App& submit, const CLI::App& bake, int argc, char** a
     submit_settings.program = fs::read_symlink("/proc/self/exe").string();
     settings.scene_file = fs::absolute(settings.scene_file).string();
     settings.out_dir = fs::absolute(settings.out_dir).lexically_normal().string();
-    if (!settings.output.video_file.empty()) settings.output.video_file = fs::absolute(settings.output.video_file).string();
+    if (!settings.output.video_file.empty())
+        settings.output.video_file = fs::absolute(settings.output.video_file).string();
     const SubmitResult result = submit_animation(settings, submit_settings);
     const JobPlan& plan = result.plan;
     size_t chunks = 0, bakes = 0;
     for (const SegmentJobs& jobs : plan.segments) chunks += jobs.chunks.size(), bakes += jobs.bake;
-    std::printf("%zu of %zu frame(s) to render (%zu complete), in %zu chunk(s) of at most %d over %zu segment(s); "
-                "%zu static cache(s) to bake\njob scripts in %s\n",
-                plan.missing.size(), plan.selected.size(), plan.selected.size() - plan.missing.size(), chunks,
-                submit_settings.chunk_frames, plan.segments.size(), bakes, result.script_dir.c_str());
+    std::printf(
+        "%zu of %zu frame(s) to render (%zu complete), in %zu chunk(s) of at most %d over %zu segment(s); "
+        "%zu static cache(s) to bake\njob scripts in %s\n",
+        plan.missing.size(), plan.selected.size(), plan.selected.size() - plan.missing.size(), chunks,
+        submit_settings.chunk_frames, plan.segments.size(), bakes, result.script_dir.c_str());
     if (!result.earlier_jobs_waited_for.empty())
         std::printf("still running from the earlier submission (the finishing job waits for them): %s\n",
                     fmt::format("{}", fmt::join(result.earlier_jobs_waited_for, " ")).c_str());
-    for (const std::string& line : result.commands) std::printf("%s%s\n", submit_settings.dry_run ? "would run: " : "ran: ", line.c_str());
+    for (const std::string& line : result.commands)
+        std::printf("%s%s\n", submit_settings.dry_run ? "would run: " : "ran: ", line.c_str());
     if (submit_settings.dry_run) return;
     const std::string ids = fmt::format("{}", fmt::join(result.job_ids, ","));
-    std::printf("submitted jobs %s (the last one finishes: checks the frames, %sreport)\n"
-                "watch them: squeue -j %s    afterwards: sacct -j %s    logs: %s/*.log\n",
-                ids.c_str(), settings.output.video_file.empty() ? "" : "video, ", ids.c_str(), ids.c_str(),
-                result.script_dir.c_str());
+    std::printf(
+        "submitted jobs %s (the last one finishes: checks the frames, %sreport)\n"
+        "watch them: squeue -j %s    afterwards: sacct -j %s    logs: %s/*.log\n",
+        ids.c_str(), settings.output.video_file.empty() ? "" : "video, ", ids.c_str(), ids.c_str(),
+        result.script_dir.c_str());
 }
 
 }  // namespace
@@ -243,18 +276,22 @@ int main(int argc, char** argv) {
     render->add_flag("--check-complete", settings.check_complete,
                      "Render nothing: fail listing the selected frames whose outputs are not complete");
 
-    CLI::App* submit = app.add_subcommand("submit", "Render the frames on a Slurm cluster: bake, chunk and finishing "
-                                                    "jobs (docs/farm.md)");
+    CLI::App* submit = app.add_subcommand("submit",
+                                          "Render the frames on a Slurm cluster: bake, chunk and finishing "
+                                          "jobs (docs/farm.md)");
     add_method_options(submit, settings, raw);
     add_render_options(submit, settings, raw);
     add_output_options(submit, settings, raw);
     SubmitSettings submit_settings;
     submit->add_option("--chunk", submit_settings.chunk_frames, "Frames per array task (chunks never span segments)")
-        ->capture_default_str()->check(CLI::Range(1, 1 << 20));
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1 << 20));
     submit->add_option("--partition", submit_settings.partition, "Slurm partition (default: the cluster's)");
     submit->add_option("--cpus-per-task", submit_settings.cpus_per_task, "CPUs of each job, also its --threads")
-        ->capture_default_str()->check(CLI::Range(1, 1024));
-    submit->add_flag("--dry-run", submit_settings.dry_run, "Write the job scripts and print the sbatch lines; submit nothing");
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1024));
+    submit->add_flag("--dry-run", submit_settings.dry_run,
+                     "Write the job scripts and print the sbatch lines; submit nothing");
     CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
     add_method_options(bake, settings, raw);
     std::optional<int> bake_segment;
@@ -269,8 +306,9 @@ int main(int argc, char** argv) {
     info->add_option("scene", info_scene, "Scene file (JSON)")->required();
 
     ReportSettings report_settings;
-    CLI::App* report = app.add_subcommand("report", "Write one HTML page about the frames in a folder: "
-                                                    "summary tables, statistics plots, contact sheet, AOV layers");
+    CLI::App* report = app.add_subcommand("report",
+                                          "Write one HTML page about the frames in a folder: "
+                                          "summary tables, statistics plots, contact sheet, AOV layers");
     report->add_option("outdir", report_settings.out_dir, "Folder that `render --out` wrote")->required();
     report->add_option("--frame", report_settings.frame, "Frame whose AOV layers are shown (default: the middle one)");
     report->add_option("--out", report_settings.html_file, "HTML file to write (default: OUTDIR/report.html)");
@@ -297,13 +335,15 @@ int main(int argc, char** argv) {
         install_interrupt_handlers();
         std::unique_ptr<tbb::global_control> thread_limit;
         if (raw.threads > 0)
-            thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(raw.threads));
+            thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                                 size_t(raw.threads));
         if (*submit) {
             run_submit(*submit, *bake, argc, argv, settings, submit_settings);
             return 0;
         }
         if (*bake) {
-            for (const std::string& file : bake_static_caches(settings, bake_segment)) spdlog::info("static cache: {}", file);
+            for (const std::string& file : bake_static_caches(settings, bake_segment))
+                spdlog::info("static cache: {}", file);
             return 0;
         }
         const RenderSummary summary = render_animation(settings);
@@ -316,8 +356,8 @@ int main(int argc, char** argv) {
                                         : fmt::format(", {} left to other processes that claimed them ({})",
                                                       summary.frames_claimed_elsewhere.size(),
                                                       format_frame_list(summary.frames_claimed_elsewhere));
-        spdlog::info("{} frame(s) written, {} complete ones skipped{}, in {} in {:.1f} s", summary.frames_written.size(),
-                     summary.frames_skipped, claimed, settings.out_dir, summary.seconds);
+        spdlog::info("{} frame(s) written, {} complete ones skipped{}, in {} in {:.1f} s",
+                     summary.frames_written.size(), summary.frames_skipped, claimed, settings.out_dir, summary.seconds);
         return 0;
     } catch (const RenderInterrupted&) {
         std::fputs("steadylight: interrupted\n", stderr);
@@ -328,7 +368,8 @@ int main(int argc, char** argv) {
     } catch (const OutputError& e) {
         // Frames written before are whole (each file appears whole or not at all): the same
         // command resumes once the cause is gone.
-        std::fprintf(stderr, "steadylight: error: %s (the frames written so far are complete; the same command resumes)\n",
+        std::fprintf(stderr,
+                     "steadylight: error: %s (the frames written so far are complete; the same command resumes)\n",
                      e.what());
         return 1;
     } catch (const std::exception& e) {

@@ -13,11 +13,11 @@
 #include "steadylight/base/error.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/output/frame_layers.h"
-#include "steadylight/passes/frame_pass.h"
-#include "steadylight/passes/pixel_reuse.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/video.h"
+#include "steadylight/passes/frame_pass.h"
+#include "steadylight/passes/pixel_reuse.h"
 #include "steadylight/run/console.h"
 #include "steadylight/run/frame_claim.h"
 #include "steadylight/run/frame_manifest.h"
@@ -41,18 +41,21 @@ Scene load_scene(const RenderSettings& settings) {
     Scene scene(load_scene_desc(settings.scene_file));
     const SceneDesc& desc = scene.desc();
     if (!has_light(desc))
-        spdlog::warn("{}: the scene has no light (no object with an emission, no point or spot light with an "
-                     "intensity): every frame renders black", settings.scene_file);
+        spdlog::warn(
+            "{}: the scene has no light (no object with an emission, no point or spot light with an "
+            "intensity): every frame renders black",
+            settings.scene_file);
     scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
     return scene;
 }
 
 /// The segment pass of `segment`, from its cache file when that matches; it keeps `paths`.
-StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment,
-                           std::shared_ptr<const StaticPhotonPaths> paths = nullptr) {
+StaticSolution static_pass(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
+                           const Segment& segment, std::shared_ptr<const StaticPhotonPaths> paths = nullptr) {
     const std::string file = static_cache_file(settings.cache_file, settings.out_dir, scene, segment);
     return load_or_run_segment_pass(scene, tracer, segment, settings.photon, file,
-                                    settings.require_cache ? CacheUse::require : CacheUse::load_or_compute, std::move(paths));
+                                    settings.require_cache ? CacheUse::require : CacheUse::load_or_compute,
+                                    std::move(paths));
 }
 
 /// Before any work: a static cache file of a method that has one cannot be a folder (it would
@@ -73,25 +76,30 @@ bool reuses_photon_paths(const RenderSettings& settings) {
 /// The static frame of pixel reuse (passes/pixel_reuse.h) when the localized method renders a
 /// segment whose camera does not move and the frame fits in a quarter of the memory available;
 /// else null (a fallback, with a log line, not an error).
-std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
-                                                        const Segment& segment, const StaticSolution& solution) {
+std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& settings, const Scene& scene,
+                                                        RayTracer& tracer, const Segment& segment,
+                                                        const StaticSolution& solution) {
     if (!settings.reuse || settings.method != Method::localized || !solution.photon_paths) return nullptr;
     if (distinct_views(scene, segment).size() != 1) {
         spdlog::info("pixel reuse: off for frames {}-{}: the camera moves", segment.first, segment.last);
         return nullptr;
     }
     const Camera& camera = scene.evaluate(segment.first).camera;
-    const double bytes = double(camera.width) * double(camera.height) * double(StaticFrame::bytes_per_pixel(settings.photon.shading.samples_per_pixel));
+    const double bytes = double(camera.width) * double(camera.height) *
+                         double(StaticFrame::bytes_per_pixel(settings.photon.shading.samples_per_pixel));
     const double budget = double(memory_available().bytes) / 4;
     if (bytes > budget) {
-        spdlog::info("pixel reuse: off: the static frame would need {:.0f} MB, more than a quarter of the {:.0f} MB "
-                     "available; every pixel is shaded in every frame", bytes / 1e6, budget * 4 / 1e6);
+        spdlog::info(
+            "pixel reuse: off: the static frame would need {:.0f} MB, more than a quarter of the {:.0f} MB "
+            "available; every pixel is shaded in every frame",
+            bytes / 1e6, budget * 4 / 1e6);
         return nullptr;
     }
     const Stopwatch time;
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PlacedFrame view(scene, tracer, bsdfs, segment.first);
-    auto frame = std::make_shared<const StaticFrame>(make_static_frame(view.context(), solution, settings.photon, settings.localized));
+    auto frame = std::make_shared<const StaticFrame>(
+        make_static_frame(view.context(), solution, settings.photon, settings.localized));
     spdlog::info("static frame: {}x{} pixels, {:.1f} MB, shaded in {:.2f} s", camera.width, camera.height, bytes / 1e6,
                  time.elapsed_s());
     return frame;
@@ -99,16 +107,19 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& se
 
 /// What every frame of `segment` starts from: the method's static pass (or its file), and the
 /// static photon paths when frames reuse them. Only for methods that have either.
-StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Segment& segment) {
+StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
+                                const Segment& segment) {
     std::shared_ptr<const StaticPhotonPaths> paths;
     if (reuses_photon_paths(settings)) {
         const Stopwatch time;
         paths = trace_segment_photon_paths(scene, tracer, segment, settings.photon);
         spdlog::info("static photon paths: {} global and {} caustic paths, {} rays, {:.1f} MB, traced in {:.2f} s",
-                     paths->global.count, paths->caustic.count, paths->global.segments.size() + paths->caustic.segments.size(),
-                     double(paths->bytes()) / 1e6, time.elapsed_s());
+                     paths->global.count, paths->caustic.count,
+                     paths->global.segments.size() + paths->caustic.segments.size(), double(paths->bytes()) / 1e6,
+                     time.elapsed_s());
     }
-    if (!method_info(settings.method).has_static_pass) return {IrradianceCache(settings.photon.cache), 0, false, "", std::move(paths)};
+    if (!method_info(settings.method).has_static_pass)
+        return {IrradianceCache(settings.photon.cache), 0, false, "", std::move(paths)};
     StaticSolution solution = static_pass(settings, scene, tracer, segment, std::move(paths));
     solution.static_frame = segment_static_frame(settings, scene, tracer, segment, solution);
     return solution;
@@ -121,7 +132,8 @@ void write_frame(const RenderSettings& settings, const Scene& scene, int frame, 
     write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view);
     if (settings.aov_pngs)
         for (const NamedImage& layer : rendered.layers)
-            write_png(frame_file_name(settings.out_dir, scene.name(), frame, layer.name + ".png"), layer.image, output.view);
+            write_png(frame_file_name(settings.out_dir, scene.name(), frame, layer.name + ".png"), layer.image,
+                      output.view);
     if (rendered.stats)
         write_text_file(frame_file_name(settings.out_dir, scene.name(), frame, "stats.json"),
                         nlohmann::json(*rendered.stats).dump(2) + "\n");
@@ -131,9 +143,14 @@ void write_frame(const RenderSettings& settings, const Scene& scene, int frame, 
 /// `frames`). Frames skipped as complete from an earlier run have their PNGs already.
 void write_video(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames) {
     const auto [first, last] = *contiguous_span(frames);
-    encode_video({.out_dir = settings.out_dir, .scene_name = scene.name(), .first_frame = first,
-                  .frame_count = last - first + 1, .fps = scene.desc().fps, .output = settings.output.video_file});
-    spdlog::info("video: {} frames at {} fps written to {}", last - first + 1, scene.desc().fps, settings.output.video_file);
+    encode_video({.out_dir = settings.out_dir,
+                  .scene_name = scene.name(),
+                  .first_frame = first,
+                  .frame_count = last - first + 1,
+                  .fps = scene.desc().fps,
+                  .output = settings.output.video_file});
+    spdlog::info("video: {} frames at {} fps written to {}", last - first + 1, scene.desc().fps,
+                 settings.output.video_file);
 }
 
 /// Writes `<out>/<scene>.settings.json` (an InputError if an earlier run used other settings,
@@ -195,9 +212,10 @@ RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, R
     RenderedFrame rendered = method_info(settings.method).render_frame(placed.context(), solution, settings);
     const NonFiniteValues non_finite = replace_non_finite(rendered.beauty, rendered.layers);
     if (non_finite.count > 0)
-        spdlog::warn("frame {}: {} channel value(s) were NaN or infinite and are written as 0, the first in layer {} "
-                     "at pixel ({}, {}): a defect, please report it with the scene",
-                     frame, non_finite.count, non_finite.first_layer, non_finite.first_x, non_finite.first_y);
+        spdlog::warn(
+            "frame {}: {} channel value(s) were NaN or infinite and are written as 0, the first in layer {} "
+            "at pixel ({}, {}): a defect, please report it with the scene",
+            frame, non_finite.count, non_finite.first_layer, non_finite.first_x, non_finite.first_y);
     if (rendered.stats) rendered.stats->non_finite_values = non_finite.count;
     return rendered;
 }
@@ -207,14 +225,14 @@ RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, R
 void write_in_background(FrameWriter& writer, const RenderSettings& settings, const Scene& scene, int frame,
                          RenderedFrame rendered, std::unique_ptr<FrameClaim> claim, const std::string& key,
                          double render_s) {
-    writer.write(frame, [&settings, &scene, frame, &key, render_s, rendered = std::move(rendered),
-                         claim = std::move(claim)] {
-        const Stopwatch time;
-        write_frame_outputs(settings, scene, frame, rendered, key);
-        spdlog::info("frame {:4d}  {:7.2f} s  {}  (written in {:.2f} s, beside the next frame){}", frame, render_s,
-                     frame_file_name(settings.out_dir, scene.name(), frame, "exr"), time.elapsed_s(),
-                     rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
-    });
+    writer.write(frame,
+                 [&settings, &scene, frame, &key, render_s, rendered = std::move(rendered), claim = std::move(claim)] {
+                     const Stopwatch time;
+                     write_frame_outputs(settings, scene, frame, rendered, key);
+                     spdlog::info("frame {:4d}  {:7.2f} s  {}  (written in {:.2f} s, beside the next frame){}", frame,
+                                  render_s, frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
+                                  time.elapsed_s(), rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
+                 });
 }
 
 /// This process's claim on `frame` (run/frame_claim.h), or nothing when another process holds
@@ -266,7 +284,8 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
                         solution = segment_solution(settings, scene, tracer, segment);
                     if (interrupt_after == rendered_here) std::raise(SIGINT);
                     const Stopwatch time;
-                    RenderedFrame rendered = render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);
+                    RenderedFrame rendered =
+                        render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);
                     write_in_background(writer, settings, scene, frame, std::move(rendered), std::move(claim), key,
                                         time.elapsed_s());
                     ++rendered_here;
@@ -294,8 +313,8 @@ std::vector<int> frames_left(const std::vector<int>& todo, const RenderSummary& 
 /// `--check-complete`: an InputError listing the selected frames in `todo` (not complete).
 void check_complete(const RenderSettings& settings, const std::vector<int>& frames, const std::vector<int>& todo) {
     if (!todo.empty())
-        throw InputError(settings.out_dir, fmt::format("{} of the {} selected frame(s) are not complete: {}", todo.size(),
-                                                       frames.size(), format_frame_list(todo)));
+        throw InputError(settings.out_dir, fmt::format("{} of the {} selected frame(s) are not complete: {}",
+                                                       todo.size(), frames.size(), format_frame_list(todo)));
     spdlog::info("all {} selected frame(s) are complete", frames.size());
 }
 
@@ -304,7 +323,8 @@ std::string segment_list(const std::vector<Segment>& segments) {
     constexpr size_t max_listed = 8;
     if (segments.size() < 2 || segments.size() > max_listed) return "";
     std::string text;
-    for (const Segment& segment : segments) text += fmt::format("{} {}-{}", text.empty() ? ":" : ",", segment.first, segment.last);
+    for (const Segment& segment : segments)
+        text += fmt::format("{} {}-{}", text.empty() ? ":" : ",", segment.first, segment.last);
     return text;
 }
 
@@ -335,8 +355,10 @@ RenderSummary render_animation(const RenderSettings& settings) {
         if (summary.frames_claimed_elsewhere.empty())
             write_video(settings, scene, frames);
         else
-            spdlog::warn("video: not written, other processes are still rendering frames {}; once they are done, "
-                         "render with --check-complete --video", format_frame_list(summary.frames_claimed_elsewhere));
+            spdlog::warn(
+                "video: not written, other processes are still rendering frames {}; once they are done, "
+                "render with --check-complete --video",
+                format_frame_list(summary.frames_claimed_elsewhere));
     }
     summary.seconds = time.elapsed_s();
     return summary;
@@ -347,8 +369,9 @@ std::vector<std::string> bake_static_caches(const RenderSettings& settings, std:
     const Scene scene = load_scene(settings);
     const std::vector<Segment>& segments = scene.segments();
     if (only_segment && (*only_segment < 0 || *only_segment >= int(segments.size())))
-        throw InputError("--segment", fmt::format("{} is not a segment of {}: it has {} (0 to {}; see steadylight info)",
-                                                  *only_segment, settings.scene_file, segments.size(), segments.size() - 1));
+        throw InputError("--segment",
+                         fmt::format("{} is not a segment of {}: it has {} (0 to {}; see steadylight info)",
+                                     *only_segment, settings.scene_file, segments.size(), segments.size() - 1));
     check_memory(estimate_memory(settings, scene), memory_available());
     create_output_folder(settings.out_dir, "--out");
     check_cache_files(settings, scene);
@@ -379,18 +402,22 @@ std::string describe_scene(const std::string& scene_file) {
         const long count = mesh ? long(mesh->indices.size() / 3) : 0;
         area_lights += object.is_emitter();
         animated_lights += object.is_emission_animated();
-        const char* emitter = object.is_emission_animated() ? "emitter, animated emission" : object.is_emitter() ? "emitter" : "";
-        objects += fmt::format("  {:<20} {:<8} {:>8} {:<10} {}{}\n", object.name, object.is_dynamic() ? "dynamic" : "static",
-                               mesh ? fmt::format("{} tris", count) : "sphere", desc.materials[size_t(object.material)].name,
-                               emitter, object.marked_dynamic && !is_chain_animated(object.placement) ? " (marked)" : "");
+        const char* emitter = object.is_emission_animated() ? "emitter, animated emission"
+                              : object.is_emitter()         ? "emitter"
+                                                            : "";
+        objects +=
+            fmt::format("  {:<20} {:<8} {:>8} {:<10} {}{}\n", object.name, object.is_dynamic() ? "dynamic" : "static",
+                        mesh ? fmt::format("{} tris", count) : "sphere", desc.materials[size_t(object.material)].name,
+                        emitter, object.marked_dynamic && !is_chain_animated(object.placement) ? " (marked)" : "");
     }
     for (const PointLightDesc& light : desc.point_lights) animated_lights += light.is_intensity_animated();
     text += fmt::format("objects: {} ({} static, {} dynamic), {} triangles\n", desc.objects.size(),
                         scene.static_objects().size(), scene.dynamic_objects().size(), triangle_count(desc));
     text += objects;
     text += fmt::format("lights: {} area, {} point/spot", area_lights, desc.point_lights.size());
-    text += animated_lights ? fmt::format(", {} animated (switched or dimmed; a new segment where they change)\n", animated_lights)
-                            : std::string("\n");
+    text += animated_lights
+                ? fmt::format(", {} animated (switched or dimmed; a new segment where they change)\n", animated_lights)
+                : std::string("\n");
     for (const PointLightDesc& light : desc.point_lights)
         text += fmt::format("  {:<20} {}{}\n", light.name, light.type == PointLightType::point ? "point" : "spot",
                             light.is_intensity_animated() ? ", animated intensity" : "");

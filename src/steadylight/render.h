@@ -12,12 +12,12 @@
 namespace steadylight {
 
 struct RenderSummary {
-    std::vector<int> frames_written;  // by this run
-    int frames_skipped = 0;           // complete from an earlier run (run/frame_manifest.h)
+    std::vector<int> frames_written;              // by this run
+    int frames_skipped = 0;                       // complete from an earlier run (run/frame_manifest.h)
     std::vector<int> frames_claimed_elsewhere;    // being rendered by another process (run/frame_claim.h)
     std::vector<int> frames_completed_elsewhere;  // finished by another process while this one ran
-    std::vector<int> frames_left;     // selected but not written: after an interrupt
-    bool interrupted = false;         // stopped by Ctrl-C (base/checkpoint.h)
+    std::vector<int> frames_left;                 // selected but not written: after an interrupt
+    bool interrupted = false;                     // stopped by Ctrl-C (base/checkpoint.h)
     double seconds = 0;
 };
 
@@ -35,7 +35,8 @@ RenderSummary render_animation(const RenderSettings& settings);
 /// `only_segment` (an index into Scene::segments(); InputError when out of range), and writes
 /// the static cache files (`steadylight bake`), or leaves them when they match already. Returns
 /// their paths.
-std::vector<std::string> bake_static_caches(const RenderSettings& settings, std::optional<int> only_segment = std::nullopt);
+std::vector<std::string> bake_static_caches(const RenderSettings& settings,
+                                            std::optional<int> only_segment = std::nullopt);
 
 /// A human-readable description of a scene: objects, triangles, lights, frames and the
 /// static/dynamic split (`steadylight info`).

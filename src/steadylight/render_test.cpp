@@ -23,8 +23,10 @@ protected:
     void SetUp() override {
         m_settings.scene_file = std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/ball.json";
         // One folder per test and process: ctest runs tests in parallel, maybe from several checkouts.
-        m_settings.out_dir = (fs::temp_directory_path() / fmt::format("steadylight_render_{}_{}",
-                              ::testing::UnitTest::GetInstance()->current_test_info()->name(), getpid())).string();
+        m_settings.out_dir = (fs::temp_directory_path() /
+                              fmt::format("steadylight_render_{}_{}",
+                                          ::testing::UnitTest::GetInstance()->current_test_info()->name(), getpid()))
+                                 .string();
         fs::remove_all(m_settings.out_dir);
         m_settings.method = Method::path;
         m_settings.path.samples_per_pixel = 1;

@@ -29,7 +29,8 @@ inline Chi2 bsdf_chi2(const Bsdf& bsdf, Vec3 wo) {
         const std::optional<BsdfSample> bs = bsdf.sample(wo, u, rng.next_float(), TransportMode::radiance);
         return bs ? std::optional(bs->wi) : std::nullopt;
     };
-    return chi2_test(sample, [&](Vec3 wi) { return bsdf.pdf(wo, wi); }, -1, 16, 32, 200'000, 12);
+    return chi2_test(
+        sample, [&](Vec3 wi) { return bsdf.pdf(wo, wi); }, -1, 16, 32, 200'000, 12);
 }
 
 }  // namespace steadylight::testing

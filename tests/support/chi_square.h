@@ -35,9 +35,8 @@ struct Chi2 {
 /// the pdf's missing mass predicts) and compares them with `pdf` over n_cos x n_phi cells of
 /// (cos theta in [z_min, 1], phi). Expected counts integrate the pdf over each cell; cells
 /// expecting fewer than 5 samples are pooled into one.
-inline Chi2 chi2_test(const std::function<std::optional<Vec3>(Pcg32&)>& sample,
-                      const std::function<float(Vec3)>& pdf, float z_min, int n_cos, int n_phi, int n,
-                      uint64_t seed = 7) {
+inline Chi2 chi2_test(const std::function<std::optional<Vec3>(Pcg32&)>& sample, const std::function<float(Vec3)>& pdf,
+                      float z_min, int n_cos, int n_phi, int n, uint64_t seed = 7) {
     std::vector<double> observed(size_t(n_cos * n_phi), 0.0);
     Pcg32 rng(seed);
     for (int s = 0; s < n; ++s) {
@@ -57,8 +56,8 @@ inline Chi2 chi2_test(const std::function<std::optional<Vec3>(Pcg32&)>& sample,
             double integral = 0;
             for (int a = 0; a < sub; ++a)
                 for (int b = 0; b < sub; ++b)
-                    integral += pdf(direction(float(z_min + (i * sub + a + 0.5) * d_cos),
-                                              float((j * sub + b + 0.5) * d_phi)));
+                    integral +=
+                        pdf(direction(float(z_min + (i * sub + a + 0.5) * d_cos), float((j * sub + b + 0.5) * d_phi)));
             const double expected = n * integral * d_cos * d_phi, obs = observed[size_t(i * n_phi + j)];
             if (expected < 5) {
                 pooled_expected += expected, pooled_observed += obs;

@@ -71,7 +71,8 @@ inline SceneDesc two_rooms_one_moving_ball() {
     for (const float x : {1.75f, 5.75f})
         add_object(desc, make_quad({x, 2.95f, 1.75f}, {0.5f, 0, 0}, {0, 0, 0.5f}), white, {30, 30, 30});
     add_object(desc, Sphere{{0, 0, 0}, 0.4f}, white);
-    desc.objects.back().placement[0].translation_track = Track<Vec3>{Interpolation::linear, {0, 1}, {{1.5f, 0.4f, 2}, {2.5f, 0.4f, 2}}};
+    desc.objects.back().placement[0].translation_track =
+        Track<Vec3>{Interpolation::linear, {0, 1}, {{1.5f, 0.4f, 2}, {2.5f, 0.4f, 2}}};
     return desc;
 }
 

@@ -64,7 +64,8 @@ void create_output_folder(const std::string& dir, const std::string& option) {
     if (error) throw InputError(option, dir + ": cannot create the folder: " + error.message());
     // A file written and removed: a read-only folder or file system shows here, not after hours.
     // Named per process: renders of one folder on a farm start together.
-    const std::string probe = (std::filesystem::path(dir) / (".steadylight-write-test-" + std::to_string(getpid()))).string();
+    const std::string probe =
+        (std::filesystem::path(dir) / (".steadylight-write-test-" + std::to_string(getpid()))).string();
     if (std::ofstream out(probe); !(out << "ok" && (out.close(), out)))
         throw InputError(option, dir + ": cannot write into the folder: " + std::strerror(errno));
     std::filesystem::remove(probe, error);

@@ -27,13 +27,16 @@ struct BoundingSphere {
 /// spheres about lerp(centres, t) with radius lerp(radii, t); the distance from s's centre to
 /// sphere t, |c - x(t)| - r(t), is convex in t, so a ternary search finds its least value.
 /// `slack` widens the test (rounding, ray offsets).
-inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& from, const BoundingSphere& to, float slack) {
+inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& from, const BoundingSphere& to,
+                              float slack) {
     if (s.empty() || from.empty() || to.empty()) return false;
     // First the capsule of the larger radius about the centres' segment, which holds the hull:
     // most spheres are clear of it, and it costs one distance.
     const Vec3 along = to.center - from.center;
-    const float t_nearest = std::clamp(dot(s.center - from.center, along) / std::max(length2(along), 1e-30f), 0.0f, 1.0f);
-    if (length(s.center - (from.center + along * t_nearest)) > s.radius + std::max(from.radius, to.radius) + slack) return false;
+    const float t_nearest =
+        std::clamp(dot(s.center - from.center, along) / std::max(length2(along), 1e-30f), 0.0f, 1.0f);
+    if (length(s.center - (from.center + along * t_nearest)) > s.radius + std::max(from.radius, to.radius) + slack)
+        return false;
     const auto gap = [&](float t) {
         return length(s.center - lerp(from.center, to.center, t)) - (from.radius + (to.radius - from.radius) * t);
     };

@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define SL_CHECK(cond)                                                                   \
-    do {                                                                                 \
-        if (!(cond)) {                                                                   \
+#define SL_CHECK(cond)                                                                    \
+    do {                                                                                  \
+        if (!(cond)) {                                                                    \
             std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
-            std::abort();                                                                \
-        }                                                                                \
+            std::abort();                                                                 \
+        }                                                                                 \
     } while (0)
 
 #define SL_CHECK_EQ(a, b) SL_CHECK((a) == (b))

@@ -9,9 +9,24 @@ namespace steadylight {
 struct Rgb {
     float r = 0, g = 0, b = 0;
 
-    constexpr Rgb& operator+=(Rgb o) { r += o.r; g += o.g; b += o.b; return *this; }
-    constexpr Rgb& operator*=(Rgb o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-    constexpr Rgb& operator*=(float s) { r *= s; g *= s; b *= s; return *this; }
+    constexpr Rgb& operator+=(Rgb o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(Rgb o) {
+        r *= o.r;
+        g *= o.g;
+        b *= o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(float s) {
+        r *= s;
+        g *= s;
+        b *= s;
+        return *this;
+    }
     constexpr float operator[](int i) const { return i == 0 ? r : (i == 1 ? g : b); }
     constexpr bool operator==(const Rgb&) const = default;
 };

@@ -19,7 +19,8 @@ public:
 /// be): the message names the file and says why. Nothing of the file is left under its name.
 class OutputError : public std::runtime_error {
 public:
-    OutputError(const std::string& path, const std::string& what) : std::runtime_error("cannot write " + path + ": " + what) {}
+    OutputError(const std::string& path, const std::string& what)
+        : std::runtime_error("cannot write " + path + ": " + what) {}
 };
 
 }  // namespace steadylight

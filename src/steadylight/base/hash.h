@@ -34,7 +34,9 @@ public:
 
     /// Integers hash by value: a negative one as its 64-bit two's complement.
     template <std::integral T>
-    void add(T v) { add_word(uint64_t(v)); }
+    void add(T v) {
+        add_word(uint64_t(v));
+    }
     void add(bool v) { add_word(v ? 1 : 0); }
     /// Floats hash by bit pattern, except that -0 counts as 0 (they compare equal).
     void add(float v) { add_word(std::bit_cast<uint32_t>(v == 0 ? 0.0f : v)); }
@@ -59,7 +61,9 @@ private:
     void add_word(uint64_t word) { m_state = mix_bits(m_state ^ (word + golden)); }
 
     template <class... F>
-    void add_floats(F... v) { (add(v), ...); }
+    void add_floats(F... v) {
+        (add(v), ...);
+    }
 
     /// `count` (1 to 8) bytes as a little-endian word, zero-padded.
     static uint64_t load_word(const unsigned char* bytes, size_t count) {

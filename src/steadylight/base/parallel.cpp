@@ -18,8 +18,7 @@ void set_render_thread_fp_modes() {
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
 
-void parallel_for_tiles(int width, int height, int tile_size,
-                        const std::function<void(int, int, int, int)>& body) {
+void parallel_for_tiles(int width, int height, int tile_size, const std::function<void(int, int, int, int)>& body) {
     const int tiles_x = (width + tile_size - 1) / tile_size;
     const int tiles_y = (height + tile_size - 1) / tile_size;
     const int tiles = tiles_x * tiles_y;
@@ -34,8 +33,7 @@ void parallel_for_tiles(int width, int height, int tile_size,
     });
 }
 
-void parallel_for_chunks(long count, long chunk_size,
-                         const std::function<void(long, long)>& body) {
+void parallel_for_chunks(long count, long chunk_size, const std::function<void(long, long)>& body) {
     const long chunks = (count + chunk_size - 1) / chunk_size;
     std::atomic<long> done = 0;
     tbb::parallel_for(0L, chunks, [&](long chunk) {

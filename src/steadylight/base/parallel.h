@@ -9,8 +9,7 @@
 namespace steadylight {
 
 /// Calls `body(x0, y0, x1, y1)` for every tile of a width x height image, in parallel.
-void parallel_for_tiles(int width, int height, int tile_size,
-                        const std::function<void(int, int, int, int)>& body);
+void parallel_for_tiles(int width, int height, int tile_size, const std::function<void(int, int, int, int)>& body);
 
 /// Calls `body(begin, end)` over chunks of [0, count), in parallel.
 void parallel_for_chunks(long count, long chunk_size, const std::function<void(long, long)>& body);

@@ -19,9 +19,7 @@ struct Ray {
 
 /// The scale of the offset that lifts a new ray off the surface it starts on, so it does not
 /// hit that surface again through float rounding; it grows with the distance from the origin.
-inline float ray_epsilon(Vec3 p) {
-    return 1e-4f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
-}
+inline float ray_epsilon(Vec3 p) { return 1e-4f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})); }
 
 /// A ray leaving surface point `p` with geometric normal `ng` in direction `d`.
 inline Ray spawn_ray(Vec3 p, Vec3 ng, Vec3 d) {

@@ -36,8 +36,7 @@ inline uint64_t hash_bits(Vec3 a, Vec3 b) {
 /// PCG32 (O'Neill 2014): small state, good statistical quality, cheap to seed per pixel.
 class Pcg32 {
 public:
-    explicit Pcg32(uint64_t seed, uint64_t stream = 0x5851f42d4c957f2dull)
-        : m_state(0), m_inc((stream << 1u) | 1u) {
+    explicit Pcg32(uint64_t seed, uint64_t stream = 0x5851f42d4c957f2dull) : m_state(0), m_inc((stream << 1u) | 1u) {
         next_u32();
         m_state += seed;
         next_u32();

@@ -22,15 +22,13 @@ double integrate_over_sphere(const std::function<float(Vec3)>& f, int n_cos, int
     const double d_cos = 2.0 / n_cos, d_phi = 2 * pi / n_phi;
     double sum = 0;
     for (int i = 0; i < n_cos; ++i)
-        for (int j = 0; j < n_phi; ++j)
-            sum += f(direction(float(-1 + (i + 0.5) * d_cos), float((j + 0.5) * d_phi)));
+        for (int j = 0; j < n_phi; ++j) sum += f(direction(float(-1 + (i + 0.5) * d_cos), float((j + 0.5) * d_phi)));
     return sum * d_cos * d_phi;
 }
 
-void expect_follows_pdf(const std::function<Vec3(Vec2)>& sample, const std::function<float(Vec3)>& pdf,
-                        float z_min) {
-    const Chi2 chi2 = chi2_test([&](Pcg32& rng) -> std::optional<Vec3> { return sample(rng.next_vec2()); }, pdf,
-                                z_min, 8, 16, 200'000);
+void expect_follows_pdf(const std::function<Vec3(Vec2)>& sample, const std::function<float(Vec3)>& pdf, float z_min) {
+    const Chi2 chi2 = chi2_test([&](Pcg32& rng) -> std::optional<Vec3> { return sample(rng.next_vec2()); }, pdf, z_min,
+                                8, 16, 200'000);
     ASSERT_GT(chi2.dof, 100);
     EXPECT_LT(chi2.statistic, chi2_bound(chi2.dof)) << "dof " << chi2.dof;
 }
@@ -45,8 +43,7 @@ TEST(Sampling, CosineHemisphereSamplesAreUnitVectorsAboveTheHorizon) {
 }
 
 TEST(Sampling, CosineHemispherePdfIntegratesToOne) {
-    const double integral =
-        integrate_over_sphere([](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 512, 64);
+    const double integral = integrate_over_sphere([](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 512, 64);
     EXPECT_NEAR(integral, 1.0, 1e-3);
 }
 
@@ -55,11 +52,13 @@ TEST(Sampling, UniformSpherePdfIntegratesToOne) {
 }
 
 TEST(Sampling, CosineHemisphereSamplesFollowTheirPdf) {
-    expect_follows_pdf(sample_cosine_hemisphere, [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 0.0f);
+    expect_follows_pdf(
+        sample_cosine_hemisphere, [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 0.0f);
 }
 
 TEST(Sampling, UniformSphereSamplesFollowTheirPdf) {
-    expect_follows_pdf(sample_uniform_sphere, [](Vec3) { return uniform_sphere_pdf(); }, -1.0f);
+    expect_follows_pdf(
+        sample_uniform_sphere, [](Vec3) { return uniform_sphere_pdf(); }, -1.0f);
 }
 
 TEST(Sampling, UniformConePdfIntegratesToOneOverTheCone) {

@@ -9,7 +9,9 @@ namespace steadylight {
 /// Measures wall time from its construction: `const Stopwatch w; ...; seconds = w.elapsed_s();`
 class Stopwatch {
 public:
-    double elapsed_s() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
+    double elapsed_s() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    }
 
 private:
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();

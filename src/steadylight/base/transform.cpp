@@ -45,10 +45,8 @@ Quat normalize(Quat q) {
 }
 
 Quat operator*(Quat a, Quat b) {
-    return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-            a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-            a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+    return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
 
 Quat slerp(Quat a, Quat b, float t) {
@@ -65,8 +63,7 @@ Quat slerp(Quat a, Quat b, float t) {
         wa = std::sin((1 - t) * theta) * inv_sin;
         wb = std::sin(t * theta) * inv_sin;
     }
-    return normalize({wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z,
-                      wa * a.w + wb * b.w});
+    return normalize({wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z, wa * a.w + wb * b.w});
 }
 
 Transform Transform::translate(Vec3 t) {
@@ -93,31 +90,26 @@ Transform Transform::rotate(Quat q) {
     return r;
 }
 
-Transform Transform::from_trs(Vec3 t, Quat r, Vec3 s) {
-    return translate(t) * rotate(r) * scale(s);
-}
+Transform Transform::from_trs(Vec3 t, Quat r, Vec3 s) { return translate(t) * rotate(r) * scale(s); }
 
 Vec3 Transform::point(Vec3 p) const { return vector(p) + Vec3{m[0][3], m[1][3], m[2][3]}; }
 
 Vec3 Transform::vector(Vec3 v) const {
-    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
-            m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
 }
 
 Vec3 Transform::normal(Vec3 n) const {
     // The cofactor matrix is the inverse transpose times the determinant: same direction,
     // no division, and well defined for any invertible transform.
-    const Vec3 c0{m[0][0], m[1][0], m[2][0]}, c1{m[0][1], m[1][1], m[2][1]},
-        c2{m[0][2], m[1][2], m[2][2]};
+    const Vec3 c0{m[0][0], m[1][0], m[2][0]}, c1{m[0][1], m[1][1], m[2][1]}, c2{m[0][2], m[1][2], m[2][2]};
     const Vec3 r0 = cross(c1, c2), r1 = cross(c2, c0), r2 = cross(c0, c1);
     const Vec3 result = r0 * n.x + r1 * n.y + r2 * n.z;
     return determinant() < 0 ? -result : result;
 }
 
 float Transform::determinant() const {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 

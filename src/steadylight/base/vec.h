@@ -23,9 +23,24 @@ struct Vec3 {
     constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
     constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-    constexpr Vec3& operator+=(Vec3 b) { x += b.x; y += b.y; z += b.z; return *this; }
-    constexpr Vec3& operator-=(Vec3 b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-    constexpr Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+    constexpr Vec3& operator+=(Vec3 b) {
+        x += b.x;
+        y += b.y;
+        z += b.z;
+        return *this;
+    }
+    constexpr Vec3& operator-=(Vec3 b) {
+        x -= b.x;
+        y -= b.y;
+        z -= b.z;
+        return *this;
+    }
+    constexpr Vec3& operator*=(float s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
     constexpr bool operator==(const Vec3&) const = default;
 };
 
@@ -37,9 +52,7 @@ constexpr Vec3 operator/(Vec3 a, float s) { return a * (1.0f / s); }
 constexpr Vec3 operator*(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 
 constexpr float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-constexpr Vec3 cross(Vec3 a, Vec3 b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+constexpr Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline float length(Vec3 a) { return std::sqrt(dot(a, a)); }
 constexpr float length2(Vec3 a) { return dot(a, a); }
 inline Vec3 normalize(Vec3 a) { return a / length(a); }
@@ -60,9 +73,7 @@ struct Frame {
         const float sign = std::copysign(1.0f, n.z);
         const float a = -1.0f / (sign + n.z);
         const float b = n.x * n.y * a;
-        return {{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x},
-                {b, sign + n.y * n.y * a, -n.y},
-                n};
+        return {{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
     }
     Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
     Vec3 to_world(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }

@@ -21,7 +21,8 @@ std::string join_quoted(const std::vector<std::string>& arguments) {
     std::string line;
     for (const std::string& argument : arguments) {
         if (!line.empty()) line += ' ';
-        line += argument == array_task_frames ? std::string("\"${chunks[$SLURM_ARRAY_TASK_ID]}\"") : shell_quote(argument);
+        line +=
+            argument == array_task_frames ? std::string("\"${chunks[$SLURM_ARRAY_TASK_ID]}\"") : shell_quote(argument);
     }
     return line;
 }
@@ -39,7 +40,8 @@ std::string parse_job_id(const std::string& output) {
 
 std::string shell_quote(const std::string& text) {
     const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_./:=,+-%@").find(c) != std::string_view::npos;
+        return std::isalnum(static_cast<unsigned char>(c)) ||
+               std::string_view("_./:=,+-%@").find(c) != std::string_view::npos;
     });
     if (plain) return text;
     std::string quoted = "'";
@@ -73,7 +75,8 @@ CommandOutput run_command(const std::vector<std::string>& arguments) {
     if (!pipe) return {127, "cannot start " + arguments.front()};
     CommandOutput result;
     std::array<char, 4096> buffer{};
-    while (const size_t bytes = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), bytes);
+    while (const size_t bytes = std::fread(buffer.data(), 1, buffer.size(), pipe))
+        result.output.append(buffer.data(), bytes);
     const int status = ::pclose(pipe);
     result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
     return result;
@@ -85,8 +88,9 @@ std::string submit_batch_job(const std::vector<std::string>& sbatch_arguments) {
     const CommandOutput result = run_command(command);
     const std::string script = sbatch_arguments.empty() ? "" : sbatch_arguments.back();
     if (result.status == 127)
-        throw InputError("sbatch", "the Slurm command sbatch is not installed here (not found in PATH); run submit "
-                                   "on a Slurm submit host, or use --dry-run to write the job scripts only");
+        throw InputError("sbatch",
+                         "the Slurm command sbatch is not installed here (not found in PATH); run submit "
+                         "on a Slurm submit host, or use --dry-run to write the job scripts only");
     const std::string id = parse_job_id(result.output);
     if (result.status != 0 || id.empty())
         throw InputError(script, fmt::format("sbatch refused the job (exit status {}): {}", result.status,

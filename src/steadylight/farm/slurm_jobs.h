@@ -13,12 +13,12 @@ inline constexpr const char* array_task_frames = "@ARRAY_TASK_FRAMES@";
 
 /// One batch script.
 struct JobScript {
-    std::string name;                   // --job-name
-    std::string log_file;               // --output (may hold %A, %a, %j)
+    std::string name;      // --job-name
+    std::string log_file;  // --output (may hold %A, %a, %j)
     int cpus_per_task = 1;
-    std::string partition;              // "" for the cluster's default
-    std::string comment;                // a line saying what the job does
-    std::vector<std::string> chunks;    // for a job array: task i renders chunks[i] (array_task_frames)
+    std::string partition;                           // "" for the cluster's default
+    std::string comment;                             // a line saying what the job does
+    std::vector<std::string> chunks;                 // for a job array: task i renders chunks[i] (array_task_frames)
     std::vector<std::vector<std::string>> commands;  // run in order; the first failure ends the job
 };
 

@@ -6,8 +6,8 @@
 #include <fstream>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "steadylight/base/atomic_file.h"
 #include "steadylight/base/error.h"
@@ -34,13 +34,14 @@ Scene load_sized_scene(const RenderSettings& settings) {
 std::string record_submit_settings(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
                                    int threads) {
     const Camera camera = scene.evaluate(0).camera;
-    const nlohmann::json json = make_settings_json(settings, {scene.name(), camera.width, camera.height, frames, threads});
+    const nlohmann::json json =
+        make_settings_json(settings, {scene.name(), camera.width, camera.height, frames, threads});
     write_settings_file(settings_file_name(settings.out_dir, scene.name()), json, false);
     return settings_key(json);
 }
 
-JobPlan plan_jobs(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames, const std::string& key,
-                  int chunk_frames) {
+JobPlan plan_jobs(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
+                  const std::string& key, int chunk_frames) {
     JobPlan plan;
     plan.selected = frames;
     for (const int frame : frames)
@@ -54,7 +55,8 @@ JobPlan plan_jobs(const RenderSettings& settings, const Scene& scene, const std:
         SegmentJobs jobs{int(i), segments[i], "", false, chunk_frame_lists(todo, chunk_frames)};
         if (method_info(settings.method).has_static_pass) {
             jobs.cache_file = static_cache_file(settings.cache_file, settings.out_dir, scene, segments[i]);
-            jobs.bake = !read_cache_file(jobs.cache_file, static_inputs_hash(scene, segments[i], settings.photon)).cache;
+            jobs.bake =
+                !read_cache_file(jobs.cache_file, static_inputs_hash(scene, segments[i], settings.photon)).cache;
         }
         plan.segments.push_back(std::move(jobs));
     }
@@ -74,13 +76,14 @@ std::vector<std::string> steadylight_command(const SubmitSettings& submit, const
 std::string write_job_script(const std::string& dir, const std::string& file, const JobScript& job) {
     const std::string path = (fs::path(dir) / file).string();
     write_text_file(path, job_script_text(job));
-    fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add);
+    fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                    fs::perm_options::add);
     return path;
 }
 
 /// Submits (or, in a dry run, only notes) `sbatch ARGS`; returns the job id, or `placeholder`.
-std::string sbatch(const SubmitSettings& submit, const std::vector<std::string>& arguments, const std::string& placeholder,
-                   SubmitResult& result) {
+std::string sbatch(const SubmitSettings& submit, const std::vector<std::string>& arguments,
+                   const std::string& placeholder, SubmitResult& result) {
     std::string line = "sbatch --parsable";
     for (const std::string& argument : arguments) {
         line += ' ';
@@ -157,8 +160,9 @@ std::string submit_bake(const RenderSettings& settings, const SubmitSettings& su
 }
 
 /// The job array of one segment's chunks, after its bake when there is one; returns its id.
-std::string submit_render_array(const RenderSettings& settings, const SubmitSettings& submit, const std::string& scene_name,
-                                const SegmentJobs& jobs, const std::string& bake_id, SubmitResult& result) {
+std::string submit_render_array(const RenderSettings& settings, const SubmitSettings& submit,
+                                const std::string& scene_name, const SegmentJobs& jobs, const std::string& bake_id,
+                                SubmitResult& result) {
     const std::string what = fmt::format("render_{}", jobs.segment);
     JobScript job = job_base(submit, scene_name, what, result.script_dir, "_%A_%a.log");
     job.comment = fmt::format("frames of segment {} (frames {}-{}), one chunk per array task", jobs.segment,
@@ -170,7 +174,8 @@ std::string submit_render_array(const RenderSettings& settings, const SubmitSett
     const std::string script = write_job_script(result.script_dir, what + ".sh", job);
     std::vector<std::string> arguments = {fmt::format("--array=0-{}", jobs.chunks.size() - 1)};
     // A failed bake must end the array: without --kill-on-invalid-dep it would stay pending for ever.
-    if (!bake_id.empty()) arguments.insert(arguments.end(), {"--dependency=afterok:" + bake_id, "--kill-on-invalid-dep=yes"});
+    if (!bake_id.empty())
+        arguments.insert(arguments.end(), {"--dependency=afterok:" + bake_id, "--kill-on-invalid-dep=yes"});
     arguments.push_back(script);
     return sbatch(submit, arguments, fmt::format("<{} job id>", what), result);
 }
@@ -182,7 +187,8 @@ void submit_finish(const RenderSettings& settings, const SubmitSettings& submit,
     JobScript job = job_base(submit, scene_name, "finish", result.script_dir, "_%j.log");
     job.comment = "checks that every frame is complete, then the video (if asked) and the report";
     std::vector<std::string> check = steadylight_command(submit, "render", settings, submit.render_options);
-    check.insert(check.end(), {"--frames", format_frame_list(result.plan.selected), "--check-complete", "--no-progress"});
+    check.insert(check.end(),
+                 {"--frames", format_frame_list(result.plan.selected), "--check-complete", "--no-progress"});
     if (!settings.output.video_file.empty()) check.insert(check.end(), {"--video", settings.output.video_file});
     job.commands = {check, {submit.program, "report", settings.out_dir}};
     const std::string script = write_job_script(result.script_dir, "finish.sh", job);

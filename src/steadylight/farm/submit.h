@@ -29,9 +29,9 @@ struct SubmitSettings {
 
 struct SubmitResult {
     JobPlan plan;
-    std::string script_dir;              // <out>/slurm
-    std::vector<std::string> commands;   // the scancel and sbatch lines, as run or (dry run) to run
-    std::vector<std::string> job_ids;    // what was submitted, in order (none in a dry run)
+    std::string script_dir;                            // <out>/slurm
+    std::vector<std::string> commands;                 // the scancel and sbatch lines, as run or (dry run) to run
+    std::vector<std::string> job_ids;                  // what was submitted, in order (none in a dry run)
     std::vector<std::string> earlier_jobs_waited_for;  // still running from the earlier submission
 };
 

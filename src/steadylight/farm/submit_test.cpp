@@ -37,10 +37,10 @@ TEST(FarmScripts, AnArrayScriptPicksItsChunkByTaskId) {
     job.commands = {{"/bin/steadylight", "render", "/s/ball.json", "--frames", array_task_frames, "--out", "/o u t"}};
     const std::string text = job_script_text(job);
     EXPECT_EQ(text.rfind("#!/bin/bash\n", 0), 0u);
-    for (const char* line : {"#SBATCH --job-name=steadylight-ball-render_0\n", "#SBATCH --output=/out/slurm/render_0_%A_%a.log\n",
-                             "#SBATCH --cpus-per-task=2\n", "#SBATCH --partition=render\n", "set -euo pipefail\n",
-                             "chunks=(0-2 3-5)\n",
-                             "/bin/steadylight render /s/ball.json --frames \"${chunks[$SLURM_ARRAY_TASK_ID]}\" --out '/o u t'\n"})
+    for (const char* line :
+         {"#SBATCH --job-name=steadylight-ball-render_0\n", "#SBATCH --output=/out/slurm/render_0_%A_%a.log\n",
+          "#SBATCH --cpus-per-task=2\n", "#SBATCH --partition=render\n", "set -euo pipefail\n", "chunks=(0-2 3-5)\n",
+          "/bin/steadylight render /s/ball.json --frames \"${chunks[$SLURM_ARRAY_TASK_ID]}\" --out '/o u t'\n"})
         EXPECT_NE(text.find(line), std::string::npos) << line << " not in\n" << text;
 }
 

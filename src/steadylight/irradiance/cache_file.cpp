@@ -27,7 +27,7 @@ namespace {
 constexpr std::string_view magic = "SLIRRCACHE";
 constexpr uint32_t format_version = 1;
 constexpr size_t header_size = magic.size() + 4 + 8 + 3 * 4 + 8;  // 42
-constexpr size_t record_size = 28 * 4;                             // 112
+constexpr size_t record_size = 28 * 4;                            // 112
 constexpr size_t checksum_size = 8;
 
 // Positions, radii and accuracy stay within 2^30 so that the cache's hash grid, whose cells go

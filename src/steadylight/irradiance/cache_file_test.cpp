@@ -97,7 +97,9 @@ class CacheFile : public ::testing::Test {
 protected:
     void SetUp() override {
         const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-        m_path = (fs::temp_directory_path() / ("steadylight_" + test + "_" + std::to_string(std::random_device{}()) + ".slirr")).string();
+        m_path = (fs::temp_directory_path() /
+                  ("steadylight_" + test + "_" + std::to_string(std::random_device{}()) + ".slirr"))
+                     .string();
     }
     void TearDown() override {
         std::error_code ignored;
@@ -234,9 +236,9 @@ TEST_F(CacheFile, CraftedValuesWithCorrectChecksumAreCorruptNotAnAbort) {
         float value;
     };
     // p.x, n.y, E.g, radius, a rotational and a translational gradient component.
-    for (const Patch patch : {Patch{36, nan}, Patch{36, 0}, Patch{36, -1}, Patch{36, inf}, Patch{0, nan},
-                              Patch{0, 1e30f}, Patch{16, 5}, Patch{28, -1}, Patch{28, inf}, Patch{40, nan},
-                              Patch{76, inf}}) {
+    for (const Patch patch :
+         {Patch{36, nan}, Patch{36, 0}, Patch{36, -1}, Patch{36, inf}, Patch{0, nan}, Patch{0, 1e30f}, Patch{16, 5},
+          Patch{28, -1}, Patch{28, inf}, Patch{40, nan}, Patch{76, inf}}) {
         Bytes bytes = whole;
         put_float(bytes, header_size + 3 * record_size + patch.offset_in_record, patch.value);
         reseal(bytes);

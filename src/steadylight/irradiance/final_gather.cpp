@@ -134,16 +134,15 @@ std::vector<Vec3> gather_directions(const GatherSettings& settings, uint64_t see
     return directions;
 }
 
-GatherResult final_gather(Vec3 p, Vec3 n, Vec3 ng, const std::vector<Vec3>& directions,
-                          const GatherSettings& settings, const GatherRadiance& radiance) {
+GatherResult final_gather(Vec3 p, Vec3 n, Vec3 ng, const std::vector<Vec3>& directions, const GatherSettings& settings,
+                          const GatherRadiance& radiance) {
     const int M = settings.theta_strata, N = settings.phi_strata;
     SL_CHECK(M > 0 && N > 0 && directions.size() == size_t(M * N));
     const Frame frame = Frame::from_normal(n);
 
     // Trace one ray per stratum.
     std::vector<GatherHit> hits(directions.size());
-    for (size_t i = 0; i < directions.size(); ++i)
-        hits[i] = radiance(spawn_ray(p, ng, frame.to_world(directions[i])));
+    for (size_t i = 0; i < directions.size(); ++i) hits[i] = radiance(spawn_ray(p, ng, frame.to_world(directions[i])));
 
     // Sum the radiances (equal projected solid angle per stratum) and the reciprocal distances.
     GatherResult result;

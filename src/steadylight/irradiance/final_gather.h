@@ -44,15 +44,15 @@ using GatherRadiance = std::function<GatherHit(const Ray& ray)>;
 std::vector<Vec3> gather_directions(const GatherSettings& settings, uint64_t seed);
 
 struct GatherResult {
-    IrradianceRecord record;       // p, n, E and both gradients filled in; radius = harmonic mean distance
-    float min_distance = infinity; // the nearest hit, for diagnostics
+    IrradianceRecord record;        // p, n, E and both gradients filled in; radius = harmonic mean distance
+    float min_distance = infinity;  // the nearest hit, for diagnostics
     int rays = 0;
 };
 
 /// Gathers at `p` with unit shading normal `n` and geometric normal `ng` (same side): each ray
 /// leaves by spawn_ray(p, ng, d) (base/ray.h) along a direction of `directions` (from
 /// gather_directions()) turned into the frame of `n`.
-GatherResult final_gather(Vec3 p, Vec3 n, Vec3 ng, const std::vector<Vec3>& directions,
-                          const GatherSettings& settings, const GatherRadiance& radiance);
+GatherResult final_gather(Vec3 p, Vec3 n, Vec3 ng, const std::vector<Vec3>& directions, const GatherSettings& settings,
+                          const GatherRadiance& radiance);
 
 }  // namespace steadylight

@@ -120,8 +120,9 @@ GatherHit hit_ceiling(const Ray& ray, Vec3 p, Vec3 n, float height, Rgb L) {
 TEST(FinalGather, HarmonicMeanDistanceToAParallelPlaneIsOneAndAHalfHeights) {
     // Every ray hits at h / cos(theta); the mean of 1/d under cosine weighting is (2/3) / h.
     const float h = 2.0f;
-    const GatherResult result =
-        gather([&](const Ray& ray) { return hit_ceiling(ray, gather_p, tilted_n, h, {1, 1, 1}); });
+    const GatherResult result = gather([&](const Ray& ray) {
+        return hit_ceiling(ray, gather_p, tilted_n, h, {1, 1, 1});
+    });
     EXPECT_NEAR(result.record.radius, 1.5f * h, 0.02f * 1.5f * h);
     EXPECT_GE(result.min_distance, h * 0.999f);
     EXPECT_LE(result.min_distance, h / std::sqrt(1 - 1.0f / 16));  // inside the first theta ring
@@ -210,11 +211,13 @@ TEST(FinalGather, TranslationalGradientFollowsTheEdgeOfAnOccluder) {
     const float h = 1.0f, L = 2.0f, x0 = -0.2f;
     const Vec3 e = tangent_of(tilted_n);
     const Vec3 p = gather_p + e * x0;
-    const GatherResult result = gather([&](const Ray& ray) {
-        const GatherHit occluder = hit_ceiling(ray, gather_p, tilted_n, h / 2, {});
-        if (dot(ray.o + ray.d * occluder.distance - gather_p, e) > 0) return occluder;
-        return hit_ceiling(ray, gather_p, tilted_n, h, {L, L, L});
-    }, tilted_n, p);
+    const GatherResult result = gather(
+        [&](const Ray& ray) {
+            const GatherHit occluder = hit_ceiling(ray, gather_p, tilted_n, h / 2, {});
+            if (dot(ray.o + ray.d * occluder.distance - gather_p, e) > 0) return occluder;
+            return hit_ceiling(ray, gather_p, tilted_n, h, {L, L, L});
+        },
+        tilted_n, p);
     const float q = h * h / 4 + x0 * x0;
     EXPECT_NEAR(result.record.E.r, pi * L * (1 - x0 / std::sqrt(q)) / 2, 0.01f * pi * L);
     const Vec3 want = e * (-(pi * L / 2) * (h * h / 4) / (q * std::sqrt(q)));

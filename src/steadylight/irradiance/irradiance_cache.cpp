@@ -148,8 +148,7 @@ const std::vector<WeightedRecord>& usable_records(const SphereGrid& index, const
 
 struct IrradianceCache::Index : SphereGrid {};
 
-IrradianceCache::IrradianceCache(CacheSettings settings)
-    : m_settings(settings), m_index(std::make_unique<Index>()) {
+IrradianceCache::IrradianceCache(CacheSettings settings) : m_settings(settings), m_index(std::make_unique<Index>()) {
     SL_CHECK(settings.accuracy > 0);
 }
 IrradianceCache::~IrradianceCache() = default;
@@ -186,9 +185,8 @@ std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scal
 
 bool IrradianceCache::covers(Vec3 p, Vec3 n) const {
     bool found = false;
-    m_index->for_each_candidate(p, [&](uint32_t id) {
-        found = found || ward_weight(m_records[id], p, n) > 1 / m_settings.accuracy;
-    });
+    m_index->for_each_candidate(
+        p, [&](uint32_t id) { found = found || ward_weight(m_records[id], p, n) > 1 / m_settings.accuracy; });
     return found;
 }
 

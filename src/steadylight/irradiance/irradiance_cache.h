@@ -18,9 +18,9 @@
 namespace steadylight {
 
 struct CacheSettings {
-    float accuracy = 0.25f;          // Ward's a: a record is used where w_i > 1 / a
-    float min_spacing_px = 2.0f;     // a record reaches (a * R) at least this many pixels...
-    float max_spacing_px = 32.0f;    // ...and at most this many
+    float accuracy = 0.25f;        // Ward's a: a record is used where w_i > 1 / a
+    float min_spacing_px = 2.0f;   // a record reaches (a * R) at least this many pixels...
+    float max_spacing_px = 32.0f;  // ...and at most this many
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CacheSettings, accuracy, min_spacing_px, max_spacing_px)
 void validate(const CacheSettings& settings, const std::string& where);

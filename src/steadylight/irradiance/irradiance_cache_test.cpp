@@ -174,10 +174,9 @@ TEST(IrradianceCache, RotationalGradientsFollowIrradianceAroundACurvedSurface) {
 }
 
 TEST(IrradianceCache, NeighbourClampingBoundsARadiusByANeighboursRadiusPlusDistance) {
-    IrradianceCache cache = cache_of({record_at({0, 0, 0}, up, {1, 1, 1}, 10.0f),
-                                      record_at({2, 0, 0}, up, {1, 1, 1}, 1.0f),
-                                      record_at({5, 0, 0}, up, {1, 1, 1}, 10.0f),
-                                      record_at({100, 0, 0}, up, {1, 1, 1}, 10.0f)});
+    IrradianceCache cache =
+        cache_of({record_at({0, 0, 0}, up, {1, 1, 1}, 10.0f), record_at({2, 0, 0}, up, {1, 1, 1}, 1.0f),
+                  record_at({5, 0, 0}, up, {1, 1, 1}, 10.0f), record_at({100, 0, 0}, up, {1, 1, 1}, 10.0f)});
     EXPECT_TRUE(cache.covers({2.4f, 0, 0}, up));  // within a R = 2.5 of the first record
     cache.clamp_radii_to_neighbours();
     EXPECT_EQ(cache.records()[0].radius, 3.0f);
@@ -203,7 +202,8 @@ std::vector<IrradianceRecord> random_records(int count, uint64_t seed) {
 }
 
 /// Ward's interpolation over every record, without any index, in double precision.
-std::optional<Rgb> brute_force_interpolate(const std::vector<IrradianceRecord>& records, float accuracy, Vec3 p, Vec3 n) {
+std::optional<Rgb> brute_force_interpolate(const std::vector<IrradianceRecord>& records, float accuracy, Vec3 p,
+                                           Vec3 n) {
     double sum[3] = {0, 0, 0}, weight_sum = 0;
     for (const IrradianceRecord& r : records) {
         // Decide in float, as the cache does, so that records on the edge go the same way.
@@ -213,7 +213,7 @@ std::optional<Rgb> brute_force_interpolate(const std::vector<IrradianceRecord>& 
         if (!(weight > 1 / accuracy)) continue;
         for (int c = 0; c < 3; ++c)
             sum[c] += weight * std::max(0.0f, r.E[c] + dot(cross(r.n, n), r.rotational_gradient[c]) +
-                                                   dot(p - r.p, r.translational_gradient[c]));
+                                                  dot(p - r.p, r.translational_gradient[c]));
         weight_sum += weight;
     }
     if (weight_sum == 0) return std::nullopt;
@@ -244,7 +244,8 @@ TEST(IrradianceCache, NeighbourClampingMatchesBruteForce) {
     cache.clamp_radii_to_neighbours();
     for (size_t i = 0; i < records.size(); ++i) {
         float want = records[i].radius;
-        for (const IrradianceRecord& other : records) want = std::min(want, other.radius + length(records[i].p - other.p));
+        for (const IrradianceRecord& other : records)
+            want = std::min(want, other.radius + length(records[i].p - other.p));
         EXPECT_EQ(cache.records()[i].radius, want);
         EXPECT_EQ(cache.records()[i].p, records[i].p);  // same order
     }

@@ -11,10 +11,10 @@
 namespace steadylight {
 
 struct IrradianceRecord {
-    Vec3 p;                    // position
-    Vec3 n;                    // unit normal on the side the irradiance arrives from
-    Rgb E;                     // irradiance (W m^-2 per channel)
-    float radius = 0;          // validity radius R_i (harmonic mean distance, clamped), world units
+    Vec3 p;                                      // position
+    Vec3 n;                                      // unit normal on the side the irradiance arrives from
+    Rgb E;                                       // irradiance (W m^-2 per channel)
+    float radius = 0;                            // validity radius R_i (harmonic mean distance, clamped), world units
     std::array<Vec3, 3> rotational_gradient;     // dE/d(rotation of n), per channel r, g, b
     std::array<Vec3, 3> translational_gradient;  // dE/dx in the tangent plane, per channel
 };

@@ -21,9 +21,8 @@ struct LayerOf {
 };
 
 const std::vector<LayerOf<PhotonFrame>> photon_layers = {
-    {"direct", &PhotonFrame::direct},     {"indirect", &PhotonFrame::indirect},
-    {"caustic", &PhotonFrame::caustic},   {"specular", &PhotonFrame::specular},
-    {"records", &PhotonFrame::records, true},
+    {"direct", &PhotonFrame::direct},     {"indirect", &PhotonFrame::indirect},     {"caustic", &PhotonFrame::caustic},
+    {"specular", &PhotonFrame::specular}, {"records", &PhotonFrame::records, true},
 };
 
 const std::vector<LayerOf<LocalizedFrame>> localized_layers = {
@@ -55,22 +54,27 @@ template <class Frame>
 RenderedFrame rendered(Method method, Frame&& frame, const std::vector<LayerOf<std::decay_t<Frame>>>& layers) {
     RenderedFrame out{std::move(frame.beauty), {}, std::move(frame.stats)};
     out.stats->method = std::string(method_info(method).name);
-    for (const auto& layer : layers) out.layers.push_back({std::string(layer.name), std::move(frame.*layer.image), layer.grey});
+    for (const auto& layer : layers)
+        out.layers.push_back({std::string(layer.name), std::move(frame.*layer.image), layer.grey});
     return out;
 }
 
-RenderedFrame render_localized(const FrameContext& context, const StaticSolution* solution, const MethodSettings& settings) {
+RenderedFrame render_localized(const FrameContext& context, const StaticSolution* solution,
+                               const MethodSettings& settings) {
     return rendered(Method::localized,
                     run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::corrected),
                     localized_layers);
 }
 
-RenderedFrame render_frozen(const FrameContext& context, const StaticSolution* solution, const MethodSettings& settings) {
-    return rendered(Method::frozen, run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::frozen),
+RenderedFrame render_frozen(const FrameContext& context, const StaticSolution* solution,
+                            const MethodSettings& settings) {
+    return rendered(Method::frozen,
+                    run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::frozen),
                     localized_layers);
 }
 
-RenderedFrame render_photon(const FrameContext& context, const StaticSolution* solution, const MethodSettings& settings) {
+RenderedFrame render_photon(const FrameContext& context, const StaticSolution* solution,
+                            const MethodSettings& settings) {
     return rendered(Method::photon,
                     render_photon_mapped(context, settings.photon, solution ? solution->photon_paths.get() : nullptr),
                     photon_layers);
@@ -84,13 +88,37 @@ RenderedFrame render_path(const FrameContext& context, const StaticSolution*, co
 
 const std::vector<MethodInfo>& methods() {
     static const std::vector<MethodInfo> table = {
-        {Method::localized, "localized", "the paper's method", true, false, {.photon = true, .localized = true},
-         names_of(localized_layers), render_localized},
-        {Method::photon, "photon", "photon mapping every frame from scratch", false, true, {.photon = true},
-         names_of(photon_layers), render_photon},
-        {Method::frozen, "frozen", "static cache reused as it is", true, false, {.photon = true},
-         names_of(localized_layers), render_frozen},
-        {Method::path, "path", "path-traced ground truth", false, false, {.path = true}, names_of(path_layers),
+        {Method::localized,
+         "localized",
+         "the paper's method",
+         true,
+         false,
+         {.photon = true, .localized = true},
+         names_of(localized_layers),
+         render_localized},
+        {Method::photon,
+         "photon",
+         "photon mapping every frame from scratch",
+         false,
+         true,
+         {.photon = true},
+         names_of(photon_layers),
+         render_photon},
+        {Method::frozen,
+         "frozen",
+         "static cache reused as it is",
+         true,
+         false,
+         {.photon = true},
+         names_of(localized_layers),
+         render_frozen},
+        {Method::path,
+         "path",
+         "path-traced ground truth",
+         false,
+         false,
+         {.path = true},
+         names_of(path_layers),
          render_path},
     };
     return table;

@@ -58,8 +58,8 @@ struct MethodInfo {
     bool is_reference;             // the method the report compares the others with (ratios)
     struct Reads {
         bool path = false, photon = false, localized = false;
-    } reads;                       // the parts of MethodSettings it reads
-    std::vector<std::string_view> layers;    // its AOV layers after the beauty, in EXR order
+    } reads;                               // the parts of MethodSettings it reads
+    std::vector<std::string_view> layers;  // its AOV layers after the beauty, in EXR order
     RenderFrameFunction render_frame;
 };
 

@@ -26,7 +26,9 @@ constexpr uint64_t fixed_seed_streams = uint64_t(1) << 63;
 class PixelStreams {
 public:
     PixelStreams(const PathTracerSettings& settings, int frame, uint64_t pixel)
-        : m_fixed(settings.fixed_seed), m_pixel(pixel), m_seed(settings.seed),
+        : m_fixed(settings.fixed_seed),
+          m_pixel(pixel),
+          m_seed(settings.seed),
           m_rng(m_fixed ? hash_ids(fixed_seed_streams, pixel, m_seed) : hash_ids(uint64_t(frame), pixel, m_seed)) {}
 
     /// The stream of the pixel's stratification shift, drawn before any sample.
@@ -44,8 +46,8 @@ private:
 };
 
 /// Direct light from one sampled light, weighted against BSDF sampling by MIS.
-Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const Frame& frame,
-                    const Bsdf& bsdf, Vec3 wo, Pcg32& rng, PathCounts& counts) {
+Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+                    Pcg32& rng, PathCounts& counts) {
     const float u_select = rng.next_float();
     const std::optional<LightSample> light = context.lights.sample(sp.p, u_select, rng.next_vec2());
     if (!light) return {};

@@ -22,13 +22,13 @@ namespace steadylight {
 
 struct PathTracerSettings {
     int samples_per_pixel = 64;
-    int max_depth = 64;           // bounces; Russian roulette usually ends paths much earlier
-    int roulette_start_depth = 3; // bounces before Russian roulette may end a path
-    uint64_t seed = 0;            // another seed gives independent noise (for reference images)
-    bool fixed_seed = false;      // the same random numbers per (pixel, camera sample) in every frame
+    int max_depth = 64;            // bounces; Russian roulette usually ends paths much earlier
+    int roulette_start_depth = 3;  // bounces before Russian roulette may end a path
+    uint64_t seed = 0;             // another seed gives independent noise (for reference images)
+    bool fixed_seed = false;       // the same random numbers per (pixel, camera sample) in every frame
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PathTracerSettings, samples_per_pixel, max_depth,
-                                                roulette_start_depth, seed, fixed_seed)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PathTracerSettings, samples_per_pixel, max_depth, roulette_start_depth,
+                                                seed, fixed_seed)
 /// Throws InputError naming `where` + "/<field>" for a value out of range.
 void validate(const PathTracerSettings& settings, const std::string& where);
 

@@ -23,7 +23,8 @@ Image render(const Scene& scene, int frame, const PathTracerSettings& settings) 
 }
 
 /// Frames of `scene` as render_animation() renders them: one tracer, moved to each frame.
-std::vector<Image> render_frames(const Scene& scene, const std::vector<int>& frames, const PathTracerSettings& settings) {
+std::vector<Image> render_frames(const Scene& scene, const std::vector<int>& frames,
+                                 const PathTracerSettings& settings) {
     RayTracer tracer(scene, scene.evaluate(frames.front()));
     const Bsdfs bsdfs = make_bsdfs(scene);
     std::vector<Image> images;
@@ -76,7 +77,8 @@ TEST(PathTracer, AbsorbingGlassTransmitsItsColourToThePowerOfTheDistance) {
 /// A diffuse floor under a point light: L = rho / pi * I cos(theta) / d^2, no indirect light.
 TEST(PathTracer, PointLightOverDiffuseFloorMatchesInverseSquareLaw) {
     SceneDesc desc = make_empty_scene({0, 1, 0}, {0, 0, 0}, 1, 1, 1);
-    add_object(desc, make_quad({-50, 0, -50}, {0, 0, 100}, {100, 0, 0}), add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}}));
+    add_object(desc, make_quad({-50, 0, -50}, {0, 0, 100}, {100, 0, 0}),
+               add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}}));
     desc.point_lights.push_back({.position = {1, 2, 0}, .intensity = {10, 10, 10}});
     const Scene scene(std::move(desc));
     const Rgb L = render(scene, 0, {.samples_per_pixel = 16}).at(0, 0);
@@ -118,7 +120,8 @@ TEST(PathTracer, LampIntensityTrackScalesTheImageExactly) {
     EXPECT_TRUE(render(switched, 0, settings).pixels == render(fixed, 0, settings).pixels);
     const Image doubled = render(switched, 1, settings);
     EXPECT_GT(mean(reference).r, 0.0f);
-    for (size_t i = 0; i < reference.pixels.size(); ++i) EXPECT_EQ(doubled.pixels[i], reference.pixels[i] * 2.0f) << "pixel " << i;
+    for (size_t i = 0; i < reference.pixels.size(); ++i)
+        EXPECT_EQ(doubled.pixels[i], reference.pixels[i] * 2.0f) << "pixel " << i;
 }
 
 TEST(PathTracer, SameImageForOneAndTwoThreads) {
@@ -147,7 +150,8 @@ TEST(PathTracer, SameFrameTwiceIsBitIdentical) {
 /// without the ball (the left half of the image) differs between the frames wherever it is lit
 /// (measured: 332 of 552 pixels; most others see the black background).
 TEST(PathTracer, WithoutFixedSeedTheNoiseChangesEveryFrame) {
-    const std::vector<Image> frames = render_frames(Scene(two_rooms_one_moving_ball()), {0, 1}, {.samples_per_pixel = 4});
+    const std::vector<Image> frames =
+        render_frames(Scene(two_rooms_one_moving_ball()), {0, 1}, {.samples_per_pixel = 4});
     const int half = frames[0].width / 2;
     EXPECT_GT(changed_pixels(frames[0], frames[1], 0, half - 1), (half - 1) * frames[0].height / 3);
 }

@@ -24,7 +24,8 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     const float max_radius = settings.irradiance_estimate.max_radius;
     const CacheBuildStats built = timed_phase("irradiance cache", stats.cache_s, [&] {
         irradiance_photons.compute_all();  // the gathers over the whole image need nearly all
-        return build_photon_cache(cache, {context, irradiance_photons, max_radius, settings.gather, Visibility::everything, {}});
+        return build_photon_cache(
+            cache, {context, irradiance_photons, max_radius, settings.gather, Visibility::everything, {}});
     });
     stats.irradiance_records = built.records_added;
 

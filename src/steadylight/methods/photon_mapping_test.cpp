@@ -87,7 +87,8 @@ TEST(PhotonMapping, BallFrameZeroAgreesWithPathTracer) { expect_agrees_with_path
 TEST(PhotonMapping, LayersSumToTheBeauty) {
     const PhotonFrame frame = render(load_scene("ball", 40, 30), 0, test_settings());
     for (size_t i = 0; i < frame.beauty.pixels.size(); ++i) {
-        const Rgb sum = frame.direct.pixels[i] + frame.indirect.pixels[i] + frame.caustic.pixels[i] + frame.specular.pixels[i];
+        const Rgb sum =
+            frame.direct.pixels[i] + frame.indirect.pixels[i] + frame.caustic.pixels[i] + frame.specular.pixels[i];
         EXPECT_NEAR(sum.g, frame.beauty.pixels[i].g, 1e-4f * (1 + sum.g));
     }
     EXPECT_GT(frame.stats.irradiance_records, 10);
@@ -123,7 +124,8 @@ TEST(PhotonMapping, PointsSeenThroughGlassAreCached) {
     int through_glass = 0, cached = 0;
     for (int y = 0; y < 48; ++y)
         for (int x = 0; x < 64; ++x) {
-            const std::optional<Hit> hit = context.tracer.intersect(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f));
+            const std::optional<Hit> hit =
+                context.tracer.intersect(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f));
             if (!hit || !context.bsdf_of(hit->object).is_delta()) continue;
             ++through_glass;
             const std::optional<CachePoint> point = cache_point_at(context, Visibility::everything, x, y);

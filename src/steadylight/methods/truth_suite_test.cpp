@@ -18,29 +18,32 @@ namespace {
 
 const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 
-/// A suite scene and how close its 80x60 frame (0, or one in a later segment) must come to the reference with the photon
-/// methods (16 camera rays per pixel). The per-pixel figure is mostly their noise: measured
-/// about 4% on the diffuse scenes and TABLE (9% before caustic photons were aimed and sharp
-/// caustics averaged over the pixel), 8% with the corridor's small lights (direct light noise),
-/// 7% with a moving glass ball (18% before) and 9.2-9.5% with a glossy floor that sees a mirror
-/// (14% while the light's image in the mirror was left to the floor's sampled bounces, 18% while
-/// they were one, not four); 4x4 blocks
-/// show bias (0.9-1.6% on the diffuse scenes and TABLE since the density estimate was corrected
-/// on 2026-12-01, 2.2-4.6% on the noisy ones). The
-/// tolerances are those figures with a margin. The path tracer (64 samples) gets 2.5 times the
-/// per-pixel figure, mirror_room's its own (34% measured: its glossy floor's noise).
+/// A suite scene and how close its 80x60 frame (0, or one in a later segment) must come to the reference with the
+/// photon methods (16 camera rays per pixel). The per-pixel figure is mostly their noise: measured about 4% on the
+/// diffuse scenes and TABLE (9% before caustic photons were aimed and sharp caustics averaged over the pixel), 8% with
+/// the corridor's small lights (direct light noise), 7% with a moving glass ball (18% before) and 9.2-9.5% with a
+/// glossy floor that sees a mirror (14% while the light's image in the mirror was left to the floor's sampled bounces,
+/// 18% while they were one, not four); 4x4 blocks show bias (0.9-1.6% on the diffuse scenes and TABLE since the density
+/// estimate was corrected on 2026-12-01, 2.2-4.6% on the noisy ones). The tolerances are those figures with a margin.
+/// The path tracer (64 samples) gets 2.5 times the per-pixel figure, mirror_room's its own (34% measured: its glossy
+/// floor's noise).
 struct SceneTolerance {
     const char* scene;
     double pixel_rmse, block_rmse;
-    int frame = 0;          // the frame compared (its golden: <scene>_<frame:04>.exr)
-    double mean_off = 0.02;  // |mean ratio - 1|
+    int frame = 0;               // the frame compared (its golden: <scene>_<frame:04>.exr)
+    double mean_off = 0.02;      // |mean ratio - 1|
     double path_pixel_rmse = 0;  // the path tracer's (64 samples per pixel); 0: 2.5 x pixel_rmse
 };
 
 constexpr SceneTolerance tolerances[] = {
-    {"cornell", 0.06, 0.025},     {"ball", 0.06, 0.025},       {"table", 0.06, 0.025},
-    {"corridor", 0.21, 0.04},     {"mirror_room", 0.12, 0.065, 0, 0.02, 0.40}, {"flythrough", 0.06, 0.025},
-    {"glass_move", 0.26, 0.06},   {"switch_room", 0.14, 0.035, 15},
+    {"cornell", 0.06, 0.025},
+    {"ball", 0.06, 0.025},
+    {"table", 0.06, 0.025},
+    {"corridor", 0.21, 0.04},
+    {"mirror_room", 0.12, 0.065, 0, 0.02, 0.40},
+    {"flythrough", 0.06, 0.025},
+    {"glass_move", 0.26, 0.06},
+    {"switch_room", 0.14, 0.035, 15},
     // Until the photons trapped in its closed lamp housings stopped leaking into the estimates
     // beside them, the photon methods were 2.3-2.4% too bright here (docs/truth-suite.md, "Light
     // trapped in lamp housings"); measured since (with photon paths of up to 64 bounces and each
@@ -114,7 +117,8 @@ Rendered render_frame(const Case& c) {
     for (int i = 0; i < 80 * 60; ++i) {
         const Ray ray = frame.context().frame.camera.generate_ray(float(i % 80) + 0.5f, float(i / 80) + 0.5f);
         const std::optional<Hit> hit = tracer.intersect(ray);
-        out.glass[size_t(i)] = hit && scene.desc().materials[size_t(scene.object(hit->object).material)].type == MaterialType::dielectric;
+        out.glass[size_t(i)] =
+            hit && scene.desc().materials[size_t(scene.object(hit->object).material)].type == MaterialType::dielectric;
     }
     return out;
 }
@@ -129,10 +133,9 @@ double mean_ratio_where(const Image& image, const Image& reference, const PixelM
 class TruthSuite : public ::testing::TestWithParam<Case> {};
 
 // The scene's tolerance for the photon methods; the path tracer's 64 samples per pixel are
-// noisier (2.5x per pixel, 2x on blocks). The mean within 2% (unless the scene says otherwise), except the frozen baseline's, which
-// misses the indirect light that moving objects change by design (4.4% on the corridor): 5%, and
-// 1.5x on blocks.
-// Where the camera sees glass, the mean through it within 10%: the dark glass gave 26%.
+// noisier (2.5x per pixel, 2x on blocks). The mean within 2% (unless the scene says otherwise), except the frozen
+// baseline's, which misses the indirect light that moving objects change by design (4.4% on the corridor): 5%, and 1.5x
+// on blocks. Where the camera sees glass, the mean through it within 10%: the dark glass gave 26%.
 TEST_P(TruthSuite, FrameAgreesWithTheReference) {
     const Case c = GetParam();
     const Rendered rendered = render_frame(c);
@@ -143,7 +146,8 @@ TEST_P(TruthSuite, FrameAgreesWithTheReference) {
     std::printf("%s %d %s: per pixel %.4f, 4x4 blocks %.4f, mean ratio %.4f\n", c.scene(), c.tolerance.frame,
                 std::string(method_info(c.method).name).c_str(), e.pixel_rmse, e.block_rmse, e.mean_ratio);
     const bool path = c.method == Method::path;
-    const double path_pixel_rmse = c.tolerance.path_pixel_rmse > 0 ? c.tolerance.path_pixel_rmse : 2.5 * c.tolerance.pixel_rmse;
+    const double path_pixel_rmse =
+        c.tolerance.path_pixel_rmse > 0 ? c.tolerance.path_pixel_rmse : 2.5 * c.tolerance.pixel_rmse;
     EXPECT_LT(e.pixel_rmse, path ? path_pixel_rmse : c.tolerance.pixel_rmse);
     const bool frozen = c.method == Method::frozen;
     EXPECT_LT(e.block_rmse, c.tolerance.block_rmse * (path ? 2 : frozen ? 1.5 : 1));

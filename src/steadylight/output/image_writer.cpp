@@ -44,8 +44,10 @@ struct ChannelData {
 
     ChannelData(const Image& image, int component, ExrPixelType type) {
         for (const Rgb& pixel : image.pixels) {
-            if (type == ExrPixelType::half) halves.push_back(to_finite_half(pixel[component]));
-            else floats.push_back(pixel[component]);
+            if (type == ExrPixelType::half)
+                halves.push_back(to_finite_half(pixel[component]));
+            else
+                floats.push_back(pixel[component]);
         }
     }
     char* base() {
@@ -76,7 +78,8 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
             for (const auto& [name, component] : layer_channels(layer.name, layer.scalar)) {
                 ChannelData& data = channels.emplace_back(*layer.image, component, type);
                 header.channels().insert(name, Imf::Channel(imf_type(type)));
-                buffer.insert(name, Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
+                buffer.insert(name,
+                              Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
             }
         // OpenEXR compresses blocks of scanlines on its own threads, one per core; the bytes
         // written do not depend on how many.
@@ -140,7 +143,8 @@ std::vector<ExrChannelInfo> read_exr_channels(const std::string& path) {
         Imf::InputFile in(path.c_str());
         std::vector<ExrChannelInfo> channels;
         for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
-            channels.push_back({it.name(), it.channel().type == Imf::HALF ? ExrPixelType::half : ExrPixelType::float32});
+            channels.push_back(
+                {it.name(), it.channel().type == Imf::HALF ? ExrPixelType::half : ExrPixelType::float32});
         return channels;
     } catch (const std::exception& e) {
         throw InputError(path, std::string("cannot read EXR: ") + e.what());

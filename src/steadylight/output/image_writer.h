@@ -30,8 +30,7 @@ enum class ExrPixelType { half, float32 };
 ExrPixelType parse_exr_pixel_type(const std::string& name, const std::string& option = "--exr-type");
 
 /// Linear RGB as a ZIP-compressed EXR with the given layers (all of the same size).
-void write_exr(const std::string& path, const std::vector<ExrLayer>& layers,
-               ExrPixelType type = ExrPixelType::half);
+void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, ExrPixelType type = ExrPixelType::half);
 /// Linear RGB radiance as a half-float EXR with channels R, G, B.
 void write_exr(const std::string& path, const Image& image);
 /// The image through `view` as the bytes of an 8-bit sRGB PNG file (for pages that embed images).

@@ -35,7 +35,8 @@ TEST(ImageWriter, ExrRoundTripKeepsHalfPrecision) {
     ASSERT_EQ(back.width, 7);
     ASSERT_EQ(back.height, 5);
     for (size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(back.pixels[i][c], image.pixels[i][c], 1e-3f * (1 + image.pixels[i][c]));
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(back.pixels[i][c], image.pixels[i][c], 1e-3f * (1 + image.pixels[i][c]));
     EXPECT_FALSE(fs::exists(path + ".partial"));
     fs::remove(path);
 }
@@ -125,7 +126,8 @@ TEST(ImageWriter, FloatExrKeepsFullPrecision) {
     Image image(3, 2);
     for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = Rgb{1.0001f, 1e-7f, 70000.0f} * float(i + 1);
     write_exr(path, {{"", &image}, {"L_y", &image}}, ExrPixelType::float32);
-    for (const ExrChannelInfo& channel : read_exr_channels(path)) EXPECT_EQ(channel.type, ExrPixelType::float32) << channel.name;
+    for (const ExrChannelInfo& channel : read_exr_channels(path))
+        EXPECT_EQ(channel.type, ExrPixelType::float32) << channel.name;
     EXPECT_EQ(read_exr(path, "L_y").pixels, image.pixels);  // 70000 overflows half; 1.0001 rounds in it
     fs::remove(path);
 }

@@ -14,8 +14,8 @@ namespace steadylight {
 
 struct OutputSettings {
     ExrPixelType exr_type = ExrPixelType::half;
-    ViewTransform view;              // PNGs (and so the video)
-    std::string video_file;          // empty: no video; else an H.264 MP4 of the PNG sequence
+    ViewTransform view;      // PNGs (and so the video)
+    std::string video_file;  // empty: no video; else an H.264 MP4 of the PNG sequence
 };
 
 /// What shapes the written images: the settings file's "render" part holds it
@@ -28,6 +28,8 @@ inline void to_json(nlohmann::json& json, const OutputSettings& s) {
 }
 
 /// Throws InputError for an exposure out of range (or NaN).
-inline void validate(const OutputSettings& s) { check_setting_range("/output/exposure_ev", s.view.exposure_ev, -64.0f, 64.0f); }
+inline void validate(const OutputSettings& s) {
+    check_setting_range("/output/exposure_ev", s.view.exposure_ev, -64.0f, 64.0f);
+}
 
 }  // namespace steadylight

@@ -67,24 +67,22 @@ std::optional<std::pair<int, int>> contiguous_span(const std::vector<int>& frame
 
 void check_video_possible(const std::vector<int>& frames) {
     if (!find_ffmpeg())
-        throw InputError("--video", "the ffmpeg program is not installed (not found in PATH); install it "
-                                    "(Debian: apt-get install ffmpeg) or render without --video");
+        throw InputError("--video",
+                         "the ffmpeg program is not installed (not found in PATH); install it "
+                         "(Debian: apt-get install ffmpeg) or render without --video");
     if (!contiguous_span(frames))
         throw InputError("--video", "a video needs consecutive frames (--frames without gaps or steps, such as A-B)");
 }
 
 std::vector<std::string> ffmpeg_arguments(const VideoJob& job, const std::string& temporary_output) {
-    const std::string pattern = (fs::path(escape_percent(job.out_dir)) / (escape_percent(job.scene_name) + "_%04d.png")).string();
-    return {"-hide_banner", "-loglevel", "error", "-nostdin", "-y",
-            "-framerate", fmt::format("{}", job.fps),
-            "-start_number", std::to_string(job.first_frame),
-            "-i", pattern,
-            "-frames:v", std::to_string(job.frame_count),
+    const std::string pattern =
+        (fs::path(escape_percent(job.out_dir)) / (escape_percent(job.scene_name) + "_%04d.png")).string();
+    return {"-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate", fmt::format("{}", job.fps),
+            "-start_number", std::to_string(job.first_frame), "-i", pattern, "-frames:v",
+            std::to_string(job.frame_count),
             // H.264 in yuv420p needs even sizes: pad odd ones with one black row or column.
-            "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-            "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18",
-            "-movflags", "+faststart",
-            "-f", "mp4", temporary_output};
+            "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18", "-movflags",
+            "+faststart", "-f", "mp4", temporary_output};
 }
 
 void encode_video(const VideoJob& job) {
@@ -93,12 +91,15 @@ void encode_video(const VideoJob& job) {
     const std::string temporary = job.output + ".partial";
     // A folder that cannot be made shows up as ffmpeg's own error about the file, just below.
     std::error_code ignored;
-    if (const fs::path folder = fs::path(job.output).parent_path(); !folder.empty()) fs::create_directories(folder, ignored);
+    if (const fs::path folder = fs::path(job.output).parent_path(); !folder.empty())
+        fs::create_directories(folder, ignored);
     const int status = run_program(*ffmpeg, ffmpeg_arguments(job, temporary));
     if (status != 0) {
         fs::remove(temporary, ignored);
-        throw InputError("--video", fmt::format("cannot write {}: ffmpeg {} (its messages are above); the frames are written",
-                                                job.output, status < 0 ? "did not run to completion" : fmt::format("exited with status {}", status)));
+        throw InputError(
+            "--video",
+            fmt::format("cannot write {}: ffmpeg {} (its messages are above); the frames are written", job.output,
+                        status < 0 ? "did not run to completion" : fmt::format("exited with status {}", status)));
     }
     fs::rename(temporary, job.output);
 }

@@ -13,12 +13,12 @@
 namespace steadylight {
 
 struct VideoJob {
-    std::string out_dir;      // where the PNGs are: <out_dir>/<scene_name>_<frame:04>.png
+    std::string out_dir;  // where the PNGs are: <out_dir>/<scene_name>_<frame:04>.png
     std::string scene_name;
     int first_frame = 0;
     int frame_count = 0;
     float fps = 24;
-    std::string output;       // the .mp4 to write
+    std::string output;  // the .mp4 to write
 };
 
 /// The path of the `ffmpeg` executable found in PATH, or nothing.

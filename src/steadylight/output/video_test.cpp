@@ -24,7 +24,11 @@ TEST(Video, ContiguousSpanNeedsConsecutiveFrames) {
 }
 
 TEST(Video, ArgumentsEncodeH264Yuv420pAtTheSceneRateFromTheFirstFrame) {
-    const VideoJob job{.out_dir = "my out", .scene_name = "ball", .first_frame = 12, .frame_count = 3, .fps = 29.97f,
+    const VideoJob job{.out_dir = "my out",
+                       .scene_name = "ball",
+                       .first_frame = 12,
+                       .frame_count = 3,
+                       .fps = 29.97f,
                        .output = "x.mp4"};
     const std::vector<std::string> arguments = ffmpeg_arguments(job, "x.mp4.partial");
     EXPECT_EQ(value_of(arguments, "-c:v"), "libx264");

@@ -39,8 +39,8 @@ float apply_exposure(float v, float exposure_ev) { return v * std::exp2(exposure
 
 float filmic_curve(float v) {
     static const float white_scale = 1 / hable(hable_white);
-    if (!(v > 0)) return 0;   // also NaN
-    if (v > 1e6f) return 1;   // also infinity, where the rational function gives inf/inf
+    if (!(v > 0)) return 0;  // also NaN
+    if (v > 1e6f) return 1;  // also infinity, where the rational function gives inf/inf
     return std::min(1.0f, hable(hable_exposure_bias * std::max(v, 0.0f)) * white_scale);
 }
 

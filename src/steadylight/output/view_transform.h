@@ -14,9 +14,9 @@ namespace steadylight {
 enum class ViewCurve { standard, filmic };
 
 struct ViewTransform {
-    float exposure_ev = 0;                  // linear values are scaled by 2^exposure_ev
+    float exposure_ev = 0;  // linear values are scaled by 2^exposure_ev
     ViewCurve curve = ViewCurve::standard;
-    bool dither = true;                     // +-1/2 code value of fixed noise before rounding
+    bool dither = true;  // +-1/2 code value of fixed noise before rounding
 };
 
 /// "standard" or "filmic"; throws InputError naming `option` otherwise.

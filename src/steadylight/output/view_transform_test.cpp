@@ -31,7 +31,7 @@ TEST(ViewTransform, SrgbMatchesThePiecewiseFormulaOfIec61966) {
     EXPECT_FLOAT_EQ(linear_to_srgb(0), 0);
     EXPECT_NEAR(linear_to_srgb(0.002f), 12.92f * 0.002f, 1e-7f);
     EXPECT_NEAR(linear_to_srgb(0.0031308f), 0.040449936f, 1e-6f);
-    EXPECT_NEAR(linear_to_srgb(0.18f), 0.46135613f, 1e-5f);   // mid grey
+    EXPECT_NEAR(linear_to_srgb(0.18f), 0.46135613f, 1e-5f);  // mid grey
     EXPECT_NEAR(linear_to_srgb(0.5f), 0.73535698f, 1e-5f);
     EXPECT_FLOAT_EQ(linear_to_srgb(1), 1);
 }

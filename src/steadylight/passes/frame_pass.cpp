@@ -82,7 +82,8 @@ void fill_layers(const FrameContext& context, const IrradianceCache& static_cach
     // Dynamic objects always take L_y: shown as the largest influence, and in their own mask.
     // The influence is infinite where there is no static indirect light; every layer stays
     // finite (a compositor's blur would spread an inf), and far below the half-float range.
-    extra[influence_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? max_influence_shown : std::min(parts.influence, max_influence_shown));
+    extra[influence_slot] =
+        Rgb{1, 1, 1} * (parts.on_dynamic ? max_influence_shown : std::min(parts.influence, max_influence_shown));
     extra[dynamic_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? 1.0f : 0.0f);
     extra[L_y_slot] = albedo_over_pi * parts.L_y;
     extra[L_t_slot] = albedo_over_pi * parts.L_t;
@@ -109,9 +110,12 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
                             FrameStats& stats) {
     const float max_radius = photon.irradiance_estimate.max_radius;
     const PointFallbacks fallback = make_point_fallbacks(context, lighting.irradiance, max_radius, photon.gather);
-    const auto influence_at = [&](int x, int y) { return lighting.influence.values.empty() ? 0.0f : lighting.influence.at(x, y); };
+    const auto influence_at = [&](int x, int y) {
+        return lighting.influence.values.empty() ? 0.0f : lighting.influence.at(x, y);
+    };
     std::atomic<long> fallbacks = 0, gather_rays = 0;
-    const auto transported = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n, const PixelSample& pixel) {
+    const auto transported = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
+                                 const PixelSample& pixel) {
         std::atomic<long> gathered = 0, rays = 0;
         const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays);
         if (gathered && pixel.trace) pixel.trace->flags |= PixelTrace::gather;
@@ -133,7 +137,8 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
     // have written (fill_layers), summed in the same order.
     reuse.reused_layers = [&](int x, int y, const PixelTrace& trace, PixelSums& sums) {
         Rgb sum;
-        for (int ray = 0; ray < trace.surface_rays; ++ray) sum += Rgb{1, 1, 1} * std::min(influence_at(x, y), max_influence_shown);
+        for (int ray = 0; ray < trace.surface_rays; ++ray)
+            sum += Rgb{1, 1, 1} * std::min(influence_at(x, y), max_influence_shown);
         sums.extra[influence_slot] = sum;
     };
     // A pixel whose corrected records changed, and nothing else: L_t looked up again at each of
@@ -155,9 +160,12 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         }
         sums.indirect = sums.extra[L_t_slot] = L_i;
     };
-    ShadedFrame shaded = shade_frame(context, photon.shading, lighting.caustic, indirect, [&](const Ray& ray) {
-        return gather_from_photons(context, lighting.irradiance, max_radius, reuse.visibility, ray).L;
-    }, reuse);
+    ShadedFrame shaded = shade_frame(
+        context, photon.shading, lighting.caustic, indirect,
+        [&](const Ray& ray) {
+            return gather_from_photons(context, lighting.irradiance, max_radius, reuse.visibility, ray).L;
+        },
+        reuse);
     stats.fallback_gathers += fallbacks;
     stats.gather_rays += gather_rays;
     return shaded;
@@ -177,7 +185,8 @@ StaticFrame make_static_frame(const FrameContext& context, const StaticSolution&
     const InfluenceMap no_influence;
     StaticFrame out;
     FrameStats stats;
-    shade_localized(context, {solution.cache, no_dynamic_cache, transported, no_influence, irradiance, paths.caustic.photons},
+    shade_localized(context,
+                    {solution.cache, no_dynamic_cache, transported, no_influence, irradiance, paths.caustic.photons},
                     photon, localized, {.visibility = Visibility::static_only, .keep = &out}, stats);
     return out;
 }
@@ -205,7 +214,8 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
 
     // Influence of the dynamic objects on each pixel's point.
     const InfluenceMap influence = timed_phase("influence", stats.influence_s, [&] {
-        return frozen ? InfluenceMap{} : estimate_influence(context, photons.dynamic, solution.cache, localized, max_radius);
+        return frozen ? InfluenceMap{}
+                      : estimate_influence(context, photons.dynamic, solution.cache, localized, max_radius);
     });
 
     // L_y: the dynamic cache, only where the influence is felt and on dynamic objects.
@@ -214,7 +224,8 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
         return context.scene.object(point.object).is_dynamic() || (!frozen && influence.at(x, y) > localized.tau_lower);
     };
     const CacheBuildStats built = timed_phase("L_y", stats.cache_s, [&] {
-        return build_photon_cache(dynamic_cache, {context, irradiance, max_radius, photon.gather, Visibility::everything, wanted});
+        return build_photon_cache(dynamic_cache,
+                                  {context, irradiance, max_radius, photon.gather, Visibility::everything, wanted});
     });
     stats.irradiance_records = built.records_added;
 
@@ -222,10 +233,11 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     const IrradianceCache& static_cache = solution.cache;
     std::vector<uint8_t> changed_records;
     const IrradianceCache corrected = timed_phase("L_t", stats.correction_s, [&] {
-        return frozen ? IrradianceCache(photon.cache)
-                      : corrected_cache(static_cache, photons.dynamic, localized.correction,
-                                        solution.correction_coverage->probes(context, static_cache, localized.correction),
-                                        &changed_records);
+        return frozen
+                   ? IrradianceCache(photon.cache)
+                   : corrected_cache(static_cache, photons.dynamic, localized.correction,
+                                     solution.correction_coverage->probes(context, static_cache, localized.correction),
+                                     &changed_records);
     });
     const IrradianceCache& transported = frozen ? static_cache : corrected;
 
@@ -234,12 +246,13 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     PixelPlan plan;
     const Stopwatch planning;
     if (base) {
-        const FrameChanges changes{context.tracer.dynamic_bounds(),
-                                   context.lights.bounds(),
-                                   indirect_changes(context.frame.camera, static_cache, changed_records, influence, localized),
-                                   std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
-                                   traced.caustic_changes.everywhere || !traced.caustic_changes.points.empty(),
-                                   caustic_changes(context.frame.camera, traced.caustic_changes, photon.shading.caustic_estimate)};
+        const FrameChanges changes{
+            context.tracer.dynamic_bounds(),
+            context.lights.bounds(),
+            indirect_changes(context.frame.camera, static_cache, changed_records, influence, localized),
+            std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
+            traced.caustic_changes.everywhere || !traced.caustic_changes.points.empty(),
+            caustic_changes(context.frame.camera, traced.caustic_changes, photon.shading.caustic_estimate)};
         plan = plan_pixels(context.frame.camera, *base, changes);
         reuse.base = base;
         reuse.work = &plan.work;
@@ -252,8 +265,9 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     stats.gather_rays = built.gather_rays;
     const double planning_s = planning.elapsed_s();
     ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
-        return shade_localized(context, {static_cache, dynamic_cache, transported, influence, irradiance, photons.caustic, frozen},
-                               photon, localized, reuse, stats);
+        return shade_localized(
+            context, {static_cache, dynamic_cache, transported, influence, irradiance, photons.caustic, frozen}, photon,
+            localized, reuse, stats);
     });
     stats.direct_s += planning_s;
     stats.caustics_s = shaded.caustic_cpu_s;

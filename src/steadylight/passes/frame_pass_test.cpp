@@ -57,7 +57,8 @@ Scene room_with_hidden_ball() {
     add_object(desc, make_box({0, 2, 0}, {4, 4, 4}), white);
     add_object(desc, make_quad({-0.25f, 3.95f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}), white, {50, 50, 50});
     add_object(desc, Sphere{{0, 0, 0}, 0.5f}, white);
-    desc.objects.back().placement[0].translation_track = Track<Vec3>{Interpolation::linear, {0, 1}, {{10, 1, 0}, {12, 1, 0}}};
+    desc.objects.back().placement[0].translation_track =
+        Track<Vec3>{Interpolation::linear, {0, 1}, {{10, 1, 0}, {12, 1, 0}}};
     return Scene(std::move(desc));
 }
 
@@ -192,7 +193,8 @@ TEST(Localized, StaticCacheHashDiffersWhereTheLightIsSwitchedOn) {
 }
 
 TEST(Localized, CacheFileOfTheLightOffIsNotLoadedWithTheLightOn) {
-    const std::string file = (std::filesystem::temp_directory_path() / "steadylight_light_switch_test.irrcache").string();
+    const std::string file =
+        (std::filesystem::temp_directory_path() / "steadylight_light_switch_test.irrcache").string();
     std::filesystem::remove(file);
     const Scene scene(light_switch_desc());
     const PhotonMappingSettings settings = small_settings();
@@ -217,7 +219,8 @@ TEST(Localized, SwitchedOnLightGivesADarkThenALitSegment) {
     for (const Segment& segment : scene.segments()) {
         const StaticSolution solution{run_segment_pass(scene, tracer, segment, settings)};
         const PlacedFrame placed(scene, tracer, bsdfs, segment.last);
-        frames.push_back(run_frame_pass(placed.context(), solution, settings, LocalizedSettings{}, StaticCacheUse::corrected));
+        frames.push_back(
+            run_frame_pass(placed.context(), solution, settings, LocalizedSettings{}, StaticCacheUse::corrected));
     }
     ASSERT_EQ(frames.size(), 2u);
     for (const Rgb& pixel : frames[0].beauty.pixels) EXPECT_EQ(pixel, Rgb{});

@@ -10,7 +10,8 @@ namespace {
 /// Composed, `reuse` gets what the irradiance at photons may take from `static_irradiance`.
 TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
                          const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
-                         FramePhotons::CausticChanges& caustic_changes, std::shared_ptr<const StaticIrradianceReuse>& reuse) {
+                         FramePhotons::CausticChanges& caustic_changes,
+                         std::shared_ptr<const StaticIrradianceReuse>& reuse) {
     if (!paths) return trace_photons(context, settings.photons);
     ComposedPhotons composed = compose_photons(context, *paths);
     stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
@@ -23,8 +24,9 @@ TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSetting
 }
 
 /// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
-TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                                    const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
+TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings,
+                                    FrameStats& stats, const StaticPhotonPaths* paths,
+                                    const IrradiancePhotons* static_irradiance,
                                     FramePhotons::CausticChanges& caustic_changes,
                                     std::shared_ptr<const StaticIrradianceReuse>& reuse) {
     TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s, [&] {

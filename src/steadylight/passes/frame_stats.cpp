@@ -60,17 +60,19 @@ bool has_photon_mapping_figures(const FrameStats& s) {
 }
 
 std::string summarize_photon_mapping(const FrameStats& s) {
-    std::string text = fmt::format("photons {}k/{}k stored, records {}, gather rays {:.2f}M, photon paths traced {} | "
-                                   "photons {:.2f} s, cache {:.2f} s, ",
-                                   s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
-                                   double(s.gather_rays) / 1e6, s.retraced_photon_paths, s.photon_tracing_s, s.cache_s);
+    std::string text = fmt::format(
+        "photons {}k/{}k stored, records {}, gather rays {:.2f}M, photon paths traced {} | "
+        "photons {:.2f} s, cache {:.2f} s, ",
+        s.global_photons_stored / 1000, s.caustic_photons_stored / 1000, s.irradiance_records,
+        double(s.gather_rays) / 1e6, s.retraced_photon_paths, s.photon_tracing_s, s.cache_s);
     if (s.influence_s > 0 || s.correction_s > 0)  // the localized method's own phases
         text += fmt::format("influence {:.2f} s, L_t {:.2f} s, ", s.influence_s, s.correction_s);
     if (const long pixels = s.pixels_reused + s.pixels_looked_up_again + s.pixels_redone_but_direct + s.pixels_redone) {
         const auto share = [&](long part) { return 100.0 * double(part) / double(pixels); };
-        text += fmt::format("pixels reused {:.1f}%, looked up again {:.1f}%, redone but direct {:.1f}%, redone {:.1f}%, ",
-                            share(s.pixels_reused), share(s.pixels_looked_up_again), share(s.pixels_redone_but_direct),
-                            share(s.pixels_redone));
+        text +=
+            fmt::format("pixels reused {:.1f}%, looked up again {:.1f}%, redone but direct {:.1f}%, redone {:.1f}%, ",
+                        share(s.pixels_reused), share(s.pixels_looked_up_again), share(s.pixels_redone_but_direct),
+                        share(s.pixels_redone));
     }
     return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.direct_s, s.caustics_s);
 }
@@ -78,21 +80,25 @@ std::string summarize_photon_mapping(const FrameStats& s) {
 /// The path tracer's figures; `s.camera_samples` > 0.
 std::string summarize_paths(const FrameStats& s) {
     const double samples = double(s.camera_samples);
-    return fmt::format("camera samples {:.2f}M, rays {:.2f}M ({:.2f} a sample), path length {:.2f} vertices", samples / 1e6,
-                       double(s.path_rays) / 1e6, double(s.path_rays) / samples, double(s.path_vertices) / samples);
+    return fmt::format("camera samples {:.2f}M, rays {:.2f}M ({:.2f} a sample), path length {:.2f} vertices",
+                       samples / 1e6, double(s.path_rays) / 1e6, double(s.path_rays) / samples,
+                       double(s.path_vertices) / samples);
 }
 
 }  // namespace
 
 void to_json(nlohmann::json& json, const FrameStats& s) {
     json = nlohmann::json::object();
-    const auto write = [&](const char* pointer, const auto& value) { json[nlohmann::json::json_pointer(pointer)] = value; };
+    const auto write = [&](const char* pointer, const auto& value) {
+        json[nlohmann::json::json_pointer(pointer)] = value;
+    };
     for_each_json_field(s, write);
     for_each_later_json_field(s, write);
 }
 
 void from_json(const nlohmann::json& json, FrameStats& s) {
-    for_each_json_field(s, [&](const char* pointer, auto& value) { json.at(nlohmann::json::json_pointer(pointer)).get_to(value); });
+    for_each_json_field(
+        s, [&](const char* pointer, auto& value) { json.at(nlohmann::json::json_pointer(pointer)).get_to(value); });
     for_each_later_json_field(s, [&](const char* pointer, auto& value) {
         using Value = std::decay_t<decltype(value)>;
         const nlohmann::json::json_pointer at(pointer);

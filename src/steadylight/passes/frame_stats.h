@@ -21,33 +21,33 @@ struct FrameStats {
     long global_photons_stored = 0;
     long caustic_photons_emitted = 0;
     long caustic_photons_stored = 0;
-    long dynamic_photons_stored = 0;  // localized: positive and negative photons of the dynamic map
-    long retraced_photon_paths = 0;   // photon paths traced this frame: all, or with reuse those
-                                      // that meet a dynamic object (from there on)
-    long pixels_reused = 0;           // localized, still camera: pixels taken from the static frame,
-    long pixels_looked_up_again = 0;  // their indirect light looked up again, no ray traced,
-    long pixels_redone_but_direct = 0;  // shaded again without shadow rays,
-    long pixels_redone = 0;             // and shaded again whole (all zero: no static frame)
+    long dynamic_photons_stored = 0;       // localized: positive and negative photons of the dynamic map
+    long retraced_photon_paths = 0;        // photon paths traced this frame: all, or with reuse those
+                                           // that meet a dynamic object (from there on)
+    long pixels_reused = 0;                // localized, still camera: pixels taken from the static frame,
+    long pixels_looked_up_again = 0;       // their indirect light looked up again, no ray traced,
+    long pixels_redone_but_direct = 0;     // shaded again without shadow rays,
+    long pixels_redone = 0;                // and shaded again whole (all zero: no static frame)
     std::array<long, 4> pixels_changed{};  // pixels whose camera, direct, indirect, caustic term changed
-    long irradiance_photons = 0;      // photons whose irradiance was computed (lazily, for gathers)
-    long irradiance_reused = 0;       // and taken from the static photons' instead (nothing changed there)
-    long irradiance_records = 0;      // computed for this frame (localized: the dynamic cache, L_y)
-    long static_records = 0;          // localized: records of the segment's static cache
-    long fallback_gathers = 0;        // gathers at points the cache did not cover
+    long irradiance_photons = 0;           // photons whose irradiance was computed (lazily, for gathers)
+    long irradiance_reused = 0;            // and taken from the static photons' instead (nothing changed there)
+    long irradiance_records = 0;           // computed for this frame (localized: the dynamic cache, L_y)
+    long static_records = 0;               // localized: records of the segment's static cache
+    long fallback_gathers = 0;             // gathers at points the cache did not cover
     long gather_rays = 0;
-    double photon_tracing_s = 0;      // tracing the photon maps
-    double cache_s = 0;               // building this frame's irradiance cache (localized: L_y), including
-                                      // the irradiance at photons its gathers read (photon: all, up front)
-    double influence_s = 0;           // localized: the influence I of the dynamic objects
-    double correction_s = 0;          // localized: correcting the static records by the dynamic map (L_t)
-    double direct_s = 0;              // shading pass: direct light, cache look-ups, specular
-    double caustics_s = 0;            // caustic estimates (inside the shading pass, summed over threads)
+    double photon_tracing_s = 0;  // tracing the photon maps
+    double cache_s = 0;           // building this frame's irradiance cache (localized: L_y), including
+                                  // the irradiance at photons its gathers read (photon: all, up front)
+    double influence_s = 0;       // localized: the influence I of the dynamic objects
+    double correction_s = 0;      // localized: correcting the static records by the dynamic map (L_t)
+    double direct_s = 0;          // shading pass: direct light, cache look-ups, specular
+    double caustics_s = 0;        // caustic estimates (inside the shading pass, summed over threads)
     double total_s = 0;
-    long camera_samples = 0;          // path: pixels x samples per pixel
-    long path_rays = 0;               // path: rays traced, closest-hit and shadow rays
-    long path_vertices = 0;           // path: surface hits along the paths (per camera sample: path length)
-    long non_finite_values = 0;       // channel values of the frame's layers that were NaN or infinite,
-                                      // written as 0 (a defect: the tests expect none)
+    long camera_samples = 0;     // path: pixels x samples per pixel
+    long path_rays = 0;          // path: rays traced, closest-hit and shadow rays
+    long path_vertices = 0;      // path: surface hits along the paths (per camera sample: path length)
+    long non_finite_values = 0;  // channel values of the frame's layers that were NaN or infinite,
+                                 // written as 0 (a defect: the tests expect none)
 };
 
 void to_json(nlohmann::json& json, const FrameStats& stats);

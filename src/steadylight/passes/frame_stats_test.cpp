@@ -74,8 +74,12 @@ TEST(FrameStats, SummaryShowsTheFiguresTheFrameHas) {
         std::vector<std::string> shown, left_out;
     };
     const Case cases[] = {
-        {path_stats(), {"camera samples 2.00M", "rays 9.00M (4.50 a sample)", "path length 2.50 vertices"}, {"photons"}},
-        {photon_stats(), {"photons 15k/0k stored, records 300", "photon paths traced 1234", "shading 0.75 s"}, {"camera samples", "influence"}},
+        {path_stats(),
+         {"camera samples 2.00M", "rays 9.00M (4.50 a sample)", "path length 2.50 vertices"},
+         {"photons"}},
+        {photon_stats(),
+         {"photons 15k/0k stored, records 300", "photon paths traced 1234", "shading 0.75 s"},
+         {"camera samples", "influence"}},
     };
     for (const Case& c : cases) {
         const std::string line = summarize(c.stats);

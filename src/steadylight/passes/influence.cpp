@@ -23,8 +23,8 @@ float relative_influence(const FrameContext& context, const PhotonMap& dynamic, 
         const Rgb& power = dynamic.photons()[nb.index].power;
         sum += std::max({std::abs(power.r), std::abs(power.g), std::abs(power.b)});
     }
-    const float r2 = int(neighbours.size()) < settings.influence_photons ? max_radius * max_radius
-                                                                         : neighbours.back().distance2;
+    const float r2 =
+        int(neighbours.size()) < settings.influence_photons ? max_radius * max_radius : neighbours.back().distance2;
     const float influence = sum / (pi * r2);
     const std::optional<Rgb> E = static_cache.interpolate(point->p, point->n, 2);
     // Scale-free: compare with the static indirect irradiance (or, where there is none, with
@@ -35,8 +35,9 @@ float relative_influence(const FrameContext& context, const PhotonMap& dynamic, 
 
 }  // namespace
 
-InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic, const IrradianceCache& static_cache,
-                                const LocalizedSettings& settings, float search_radius) {
+InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic,
+                                const IrradianceCache& static_cache, const LocalizedSettings& settings,
+                                float search_radius) {
     const Camera& camera = context.frame.camera;
     InfluenceMap map{camera.width, camera.height, settings.influence_step, {}};
     const int columns = (camera.width + map.step - 1) / map.step, rows = (camera.height + map.step - 1) / map.step;
@@ -52,7 +53,8 @@ InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dy
 }
 
 float blend_weight(float influence, const LocalizedSettings& settings) {
-    const float x = std::clamp((influence - settings.tau_lower) / (settings.tau_upper - settings.tau_lower), 0.0f, 1.0f);
+    const float x =
+        std::clamp((influence - settings.tau_lower) / (settings.tau_upper - settings.tau_lower), 0.0f, 1.0f);
     return x * x * (3 - 2 * x);
 }
 

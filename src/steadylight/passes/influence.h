@@ -27,8 +27,9 @@ struct InfluenceMap {
 
 /// I at the pixels of the frame, from the frame's dynamic photons; `search_radius` bounds the
 /// photon search (the global irradiance estimate's radius).
-InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic, const IrradianceCache& static_cache,
-                                const LocalizedSettings& settings, float search_radius);
+InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic,
+                                const IrradianceCache& static_cache, const LocalizedSettings& settings,
+                                float search_radius);
 
 /// f(g(I)) of paper §3.3: 0 below tau_lower, 1 above tau_upper, a smoothstep between.
 float blend_weight(float influence, const LocalizedSettings& settings);

@@ -15,10 +15,10 @@ constexpr int max_correction_levels = 8;
 /// kernel estimate at radii radius, 2 radius, ... (levels of them), each level's detail over the
 /// next coarser kept where it stands out of its own noise.
 struct CorrectionSettings {
-    float radius = 0.25f;        // the finest level's kernel radius, scene units
-    int levels = 4;              // radius x 1, 2, 4, 8 by default
-    float noise_sigmas = 3;      // a detail within this many standard errors of zero is noise: dropped
-    float signal_sigmas = 5;     // beyond this many it is kept whole; in between, in proportion
+    float radius = 0.25f;     // the finest level's kernel radius, scene units
+    int levels = 4;           // radius x 1, 2, 4, 8 by default
+    float noise_sigmas = 3;   // a detail within this many standard errors of zero is noise: dropped
+    float signal_sigmas = 5;  // beyond this many it is kept whole; in between, in proportion
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CorrectionSettings, radius, levels, noise_sigmas, signal_sigmas)
 
@@ -28,7 +28,7 @@ struct LocalizedSettings {
     /// nearest photons, changed from frame to frame far from the moving objects and flickered
     /// (docs/localized.md "A steady correction").
     CorrectionSettings correction;
-    int influence_step = 4;       // influence estimated at every n-th pixel centre in x and y (it is smooth)
+    int influence_step = 4;  // influence estimated at every n-th pixel centre in x and y (it is smooth)
     /// Thresholds on the influence relative to the static indirect irradiance there: below
     /// tau_lower L_t alone, above tau_upper L_y alone, smoothstep between (paper §3.3). Why these
     /// values: a density estimate of the dynamic photons from k photons has a noise of about
@@ -37,8 +37,8 @@ struct LocalizedSettings {
     float tau_lower = 0.3f;
     float tau_upper = 1.0f;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(LocalizedSettings, influence_photons, correction,
-                                                influence_step, tau_lower, tau_upper)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(LocalizedSettings, influence_photons, correction, influence_step,
+                                                tau_lower, tau_upper)
 
 /// Throws InputError naming `where` + "/<field>" for a value out of range, or when
 /// tau_lower >= tau_upper.

@@ -20,13 +20,15 @@ namespace {
 
 /// A final gather at any surface point, seeing everything.
 std::function<GatherResult(const SurfacePoint&, Vec3)> make_point_gather(const FrameContext& context,
-                                                                        const IrradiancePhotons& photons, float max_radius,
-                                                                        const GatherSettings& gather) {
-    return [&context, &photons, max_radius, gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
-        return final_gather(sp.p, n, sp.ng, dirs, gather, [&](const Ray& r) {
-            return gather_from_photons(context, photons, max_radius, Visibility::everything, r);
-        });
-    };
+                                                                         const IrradiancePhotons& photons,
+                                                                         float max_radius,
+                                                                         const GatherSettings& gather) {
+    return
+        [&context, &photons, max_radius, gather, dirs = gather_directions(gather, 0)](const SurfacePoint& sp, Vec3 n) {
+            return final_gather(sp.p, n, sp.ng, dirs, gather, [&](const Ray& r) {
+                return gather_from_photons(context, photons, max_radius, Visibility::everything, r);
+            });
+        };
 }
 
 }  // namespace
@@ -47,7 +49,8 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         // Numbers of this ray's own: rays that meet one primitive must not share a choice (with
         // the fixed gather directions, every record on a wall casts rays of the same directions).
         // The same ray gets the same numbers in every frame.
-        Pcg32 rng(hash_ids(hash_bits(ray.o, ray.d), uint64_t(depth), uint64_t(hit->primitive), uint64_t(surface.object)));
+        Pcg32 rng(
+            hash_ids(hash_bits(ray.o, ray.d), uint64_t(depth), uint64_t(hit->primitive), uint64_t(surface.object)));
         if (bsdf->is_diffuse()) {
             const SurfacePoint facing = face_towards(surface, ray.d);
             const std::optional<Rgb> E = photons.lookup(surface.p, facing.ng, max_radius);
@@ -60,7 +63,8 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         }
         // Follow specular and glossy surfaces along one deterministic sample.
         const float u_lobe = rng.next_float();
-        const std::optional<Bounce> bounce = sample_bounce(*bsdf, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
+        const std::optional<Bounce> bounce =
+            sample_bounce(*bsdf, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
         if (!bounce) return result;
         Rgb weight = bounce->sample.weight;
         if (coat) {
@@ -96,14 +100,16 @@ std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility
         std::unique_ptr<Bsdf> smooth;
         const Bsdf* through = &bsdf;
         if (!bsdf.is_delta()) {
-            const MaterialDesc& m = context.scene.desc().materials[size_t(context.scene.object(surface.object).material)];
+            const MaterialDesc& m =
+                context.scene.desc().materials[size_t(context.scene.object(surface.object).material)];
             if (m.type != MaterialType::dielectric) return std::nullopt;
             smooth = make_dielectric(m.ior, m.transmittance);
             through = smooth.get();
         }
         // Through glass along the refracted ray (the likelier branch, unless totally reflected),
         // off mirrors along the reflected one.
-        const std::optional<Bounce> bounce = sample_bounce(*through, surface, ray.d, {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
+        const std::optional<Bounce> bounce =
+            sample_bounce(*through, surface, ray.d, {0.5f, 0.5f}, 0.9999f, TransportMode::radiance);
         if (!bounce) return std::nullopt;
         ray = bounce->ray;
     }
@@ -121,7 +127,8 @@ CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuil
             return point;
         },
         [&](const CachePoint& point, uint64_t id) {
-            const std::vector<Vec3> dirs = build.gather.fixed_directions ? fixed_dirs : gather_directions(build.gather, id);
+            const std::vector<Vec3> dirs =
+                build.gather.fixed_directions ? fixed_dirs : gather_directions(build.gather, id);
             return final_gather(point.p, point.n, point.ng, dirs, build.gather, [&](const Ray& r) {
                 return gather_from_photons(build.context, build.photons, build.max_radius, build.visibility, r);
             });
@@ -133,7 +140,8 @@ PointFallbacks make_point_fallbacks(const FrameContext& context, const Irradianc
     GatherSettings rough = gather;
     rough.theta_strata = std::max(2, gather.theta_strata / 4);
     rough.phi_strata = std::max(4, gather.phi_strata / 4);
-    return {make_point_gather(context, photons, max_radius, gather), make_point_gather(context, photons, max_radius, rough),
+    return {make_point_gather(context, photons, max_radius, gather),
+            make_point_gather(context, photons, max_radius, rough),
             [&photons, max_radius](const SurfacePoint& sp, Vec3) {
                 GatherResult result;
                 result.record.E = photons.lookup(sp.p, sp.ng, max_radius).value_or(Rgb{});
@@ -145,15 +153,16 @@ Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& 
     Image picture(camera.width, camera.height);
     for (const IrradianceRecord& record : records) {
         const std::optional<Vec2> film = camera.project(record.p);
-        if (!film || film->x < 0 || film->y < 0 || film->x >= float(camera.width) || film->y >= float(camera.height)) continue;
+        if (!film || film->x < 0 || film->y < 0 || film->x >= float(camera.width) || film->y >= float(camera.height))
+            continue;
         picture.at(int(film->x), int(film->y)) = {1, 1, 1};
     }
     return picture;
 }
 
 Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
-                      const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather, std::atomic<long>& fallbacks,
-                      std::atomic<long>& gather_rays) {
+                      const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather,
+                      std::atomic<long>& fallbacks, std::atomic<long>& gather_rays) {
     if (const std::optional<Rgb> E = cache.interpolate(sp.p, n)) return *E;
     // Between records after neighbour clamping, or inside a pixel off its centre: let the
     // records reach twice as far before gathering anew.

@@ -44,7 +44,7 @@ std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility
 struct PhotonCacheBuild {
     const FrameContext& context;
     const IrradiancePhotons& photons;
-    float max_radius;           // of the precomputed-irradiance look-up
+    float max_radius;  // of the precomputed-irradiance look-up
     const GatherSettings& gather;
     Visibility visibility;
     std::function<bool(const CachePoint&, int x, int y)> wanted;
@@ -74,8 +74,8 @@ PointFallbacks make_point_fallbacks(const FrameContext& context, const Irradianc
 /// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
 /// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.
 Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
-                      const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather, std::atomic<long>& fallbacks,
-                      std::atomic<long>& gather_rays);
+                      const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather,
+                      std::atomic<long>& fallbacks, std::atomic<long>& gather_rays);
 
 /// 1 at the pixels where records project, 0 elsewhere (paper Fig. 3).
 Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records);

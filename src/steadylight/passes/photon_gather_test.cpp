@@ -20,7 +20,9 @@ std::vector<Photon> plane_photons(float height, Vec3 normal, float irradiance) {
     constexpr int count = 80'000;
     std::vector<Photon> stored;
     for (int i = 0; i < count; ++i)
-        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), height, -10 + 20 * halton(1, uint64_t(i))}, normal, normal,
+        stored.push_back({{-10 + 20 * halton(0, uint64_t(i)), height, -10 + 20 * halton(1, uint64_t(i))},
+                          normal,
+                          normal,
                           Rgb{1, 1, 1} * (400.0f * irradiance / count)});
     return stored;
 }
@@ -33,15 +35,15 @@ PhotonMap ceiling_photons() {
 }
 
 // A coated floor (one quad: two triangles) under a wide diffuse ceiling whose photons give it
-// irradiance 1 (as estimated from them). Gather rays that meet the floor read its base (no photons there: nothing) and go
-// on along the coat, kept by Russian roulette, to the ceiling, of radiance rho / pi. On average
-// over many rays that is the coat's albedo times the ceiling's radiance. Rays that meet one
-// triangle must not share the roulette's choice (they did: every ray went on, weighted by
-// 1 / its chance, or none did, 3% too bright in the textured Blender room).
+// irradiance 1 (as estimated from them). Gather rays that meet the floor read its base (no photons there: nothing) and
+// go on along the coat, kept by Russian roulette, to the ceiling, of radiance rho / pi. On average over many rays that
+// is the coat's albedo times the ceiling's radiance. Rays that meet one triangle must not share the roulette's choice
+// (they did: every ray went on, weighted by 1 / its chance, or none did, 3% too bright in the textured Blender room).
 TEST(PhotonGather, RaysOffACoatBringTheCoatsAlbedoOfWhatItReflects) {
     SceneDesc desc = make_empty_scene({0, 0.5f, -3}, {0, 0, 0});
     const float ceiling_albedo = 0.5f;
-    MaterialDesc coated{.type = MaterialType::pbr, .reflectance = {0.001f, 0.001f, 0.001f}, .ior = 3, .roughness = 0.3f};
+    MaterialDesc coated{
+        .type = MaterialType::pbr, .reflectance = {0.001f, 0.001f, 0.001f}, .ior = 3, .roughness = 0.3f};
     add_object(desc, make_quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}), add_material(desc, coated));
     add_object(desc, make_quad({-10, 1, -10}, {20, 0, 0}, {0, 0, 20}),
                add_material(desc, {.reflectance = {ceiling_albedo, ceiling_albedo, ceiling_albedo}}));
@@ -73,7 +75,8 @@ TEST(PhotonGather, RaysOffACoatBringTheCoatsAlbedoOfWhatItReflects) {
             ++rays;
         }
     const auto coat = make_bsdf(scene.desc().materials[0])->non_diffuse_part();
-    const double coat_albedo = testing::directional_albedo(*coat, testing::direction(-d.y, 0), TransportMode::radiance, 256).g;
+    const double coat_albedo =
+        testing::directional_albedo(*coat, testing::direction(-d.y, 0), TransportMode::radiance, 256).g;
     const double expected = coat_albedo * ceiling;
     std::printf("rays that went on along the coat: %.3f; mean radiance %.5f, expected %.5f\n", double(went_on) / rays,
                 sum / rays, expected);
@@ -94,7 +97,8 @@ TEST(PhotonGather, RaysOffACoatBringTheCoatsAlbedoOfWhatItReflects) {
 // conserves energy, rough_dielectric_test.cpp): 0.790 with it, 0.624 at roughness 0.6.
 TEST(PhotonGather, RaysCrossAStackOfGlassPanes) {
     SceneDesc desc = make_empty_scene({0, 0.5f, -3}, {0, 0, 0});
-    add_object(desc, make_quad({-10, 1, -10}, {20, 0, 0}, {0, 0, 20}), add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}}));
+    add_object(desc, make_quad({-10, 1, -10}, {20, 0, 0}, {0, 0, 20}),
+               add_material(desc, {.reflectance = {0.5f, 0.5f, 0.5f}}));
     const int glass = add_material(desc, {.type = MaterialType::dielectric, .ior = 1.5f, .roughness = 0});
     constexpr int panes = 3;
     for (int i = 0; i < panes; ++i) add_object(desc, make_box({0, 0.3f + 0.2f * float(i), 0}, {8, 0.02f, 8}), glass);
@@ -108,8 +112,12 @@ TEST(PhotonGather, RaysCrossAStackOfGlassPanes) {
     double above = 0, below = 0;
     for (int i = 0; i < rays; ++i) {
         const float x = -1 + 2 * halton(0, uint64_t(i)), z = -1 + 2 * halton(1, uint64_t(i));
-        above += gather_from_photons(frame.context(), photons, 0.5f, Visibility::everything, {{x, 0.9f, z}, {0, 1, 0}}).L.g / rays;
-        below += gather_from_photons(frame.context(), photons, 0.5f, Visibility::everything, {{x, 0.1f, z}, {0, 1, 0}}).L.g / rays;
+        above +=
+            gather_from_photons(frame.context(), photons, 0.5f, Visibility::everything, {{x, 0.9f, z}, {0, 1, 0}}).L.g /
+            rays;
+        below +=
+            gather_from_photons(frame.context(), photons, 0.5f, Visibility::everything, {{x, 0.1f, z}, {0, 1, 0}}).L.g /
+            rays;
     }
     const double R = 0.04, expected = (1 - R) / (1 + (2 * panes - 1) * R);
     std::printf("through %d panes: %.4f of the ceiling's radiance (expected %.4f)\n", panes, below / above, expected);
@@ -147,7 +155,7 @@ TEST(PhotonGather, EveryBranchShareEstimatesTheSameIrradiance) {
     const SurfacePoint sp = face_towards(make_surface_point(scene, context.frame, up, *hit), up.d);
     for (const BranchShare share : {BranchShare::whole, BranchShare::glossy, BranchShare::minor}) {
         const GatherResult result = fallbacks.at(share)(sp, sp.ns);
-        const int rays = share == BranchShare::whole ? gather.theta_strata * gather.phi_strata
+        const int rays = share == BranchShare::whole    ? gather.theta_strata * gather.phi_strata
                          : share == BranchShare::glossy ? gather.theta_strata * gather.phi_strata / 16
                                                         : 0;
         std::printf("share %d: E %.4f from %d rays (expected %.4f)\n", int(share), result.record.E.g, result.rays, rho);

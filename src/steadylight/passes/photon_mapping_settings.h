@@ -19,7 +19,7 @@ namespace steadylight {
 struct PhotonMappingSettings {
     PhotonSettings photons;
     DensitySettings irradiance_estimate{.k = 50, .max_radius = 0.5f};  // at the precomputed photons
-    int irradiance_stride = 4;        // precompute irradiance at one in n global photons (by their hash)
+    int irradiance_stride = 4;  // precompute irradiance at one in n global photons (by their hash)
     GatherSettings gather;
     CacheSettings cache;
     ShadingSettings shading;

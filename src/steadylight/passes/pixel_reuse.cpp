@@ -6,7 +6,8 @@
 
 namespace steadylight {
 
-void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask, Outline outline) {
+void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
+                           Outline outline) {
     if (sphere.empty()) return;
     const Vec3 eye = camera.generate_ray(0, 0).o;
     const Vec3 to_centre = sphere.center - eye;
@@ -35,7 +36,8 @@ void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, s
     // A pixel more each way (rounding in the projection), then the pixels whose rays come within
     // the sphere's angular reach.
     const int x0 = std::max(int(std::floor(x_lo)) - 1, 0), y0 = std::max(int(std::floor(y_lo)) - 1, 0);
-    const int x1 = std::min(int(std::ceil(x_hi)) + 1, camera.width - 1), y1 = std::min(int(std::ceil(y_hi)) + 1, camera.height - 1);
+    const int x1 = std::min(int(std::ceil(x_hi)) + 1, camera.width - 1),
+              y1 = std::min(int(std::ceil(y_hi)) + 1, camera.height - 1);
     const bool round = outline == Outline::round && reach < pi;
     const float min_cos = round ? std::cos(reach) : -2.0f;
     for (int y = y0; y <= y1; ++y)
@@ -71,9 +73,10 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
             if ((trace.flags & PixelTrace::reads_caustics) && changes.caustic[size_t(i)]) changed |= caustic_term;
             plan.changed[size_t(i)] = changed;
             // Looked up again where only corrected records changed for a pixel whose every look-up was kept.
-            const bool look_up_again = changed == indirect_term && changes.indirect[size_t(i)] == FrameChanges::records &&
-                                       !(trace.flags & (PixelTrace::chain | PixelTrace::coat | PixelTrace::gather | PixelTrace::unkept));
-            plan.work[size_t(i)] = !changed                                                     ? PixelWork::reuse
+            const bool look_up_again =
+                changed == indirect_term && changes.indirect[size_t(i)] == FrameChanges::records &&
+                !(trace.flags & (PixelTrace::chain | PixelTrace::coat | PixelTrace::gather | PixelTrace::unkept));
+            plan.work[size_t(i)] = !changed                                            ? PixelWork::reuse
                                    : look_up_again                                     ? PixelWork::look_up_again
                                    : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo
                                                                                        : PixelWork::redo_but_direct;
@@ -95,7 +98,8 @@ bool same_view_and_lights(const Scene& scene, const FrameState& frame, const Fra
     if (!(a.world_from_camera == b.world_from_camera) || a.tan_half_fov_y != b.tan_half_fov_y || a.width != b.width ||
         a.height != b.height)
         return false;
-    if (frame.emission != static_frame.emission || frame.point_light_intensity != static_frame.point_light_intensity) return false;
+    if (frame.emission != static_frame.emission || frame.point_light_intensity != static_frame.point_light_intensity)
+        return false;
     for (const int object : scene.dynamic_objects())
         if (!is_black(frame.emission[size_t(object)])) return false;
     return true;

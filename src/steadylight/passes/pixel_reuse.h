@@ -36,10 +36,10 @@ struct FrameChanges {
     std::vector<BoundingSphere> dynamic;  // the dynamic objects at this frame
     std::vector<BoundingSphere> lights;
     enum IndirectChange : uint8_t { records = 1, blend = 2 };
-    std::vector<uint8_t> indirect;        // per pixel, row by row: IndirectChange bits, why its indirect light may change
-    bool records_changed = false;         // some corrected record differs from the static one
-    bool caustics_changed = false;        // the caustic map differs from the static one somewhere
-    std::vector<uint8_t> caustic;         // per pixel: a diffuse point there may read changed caustic photons
+    std::vector<uint8_t> indirect;  // per pixel, row by row: IndirectChange bits, why its indirect light may change
+    bool records_changed = false;   // some corrected record differs from the static one
+    bool caustics_changed = false;  // the caustic map differs from the static one somewhere
+    std::vector<uint8_t> caustic;   // per pixel: a diffuse point there may read changed caustic photons
 };
 
 /// The work of every pixel of a frame, the terms that made it, and how many of each.
@@ -47,7 +47,7 @@ struct PixelPlan {
     std::vector<PixelWork> work;
     std::vector<uint8_t> changed;  // ChangedTerm bits
     long reused = 0, looked_up_again = 0, redone_but_direct = 0, redone = 0;
-    long changed_pixels[4] = {};   // per ChangedTerm bit, in bit order
+    long changed_pixels[4] = {};  // per ChangedTerm bit, in bit order
 };
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes);

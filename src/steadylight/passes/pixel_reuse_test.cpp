@@ -27,14 +27,16 @@ Vec3 random_in_ball(Pcg32& rng, const BoundingSphere& s) {
 }
 
 BoundingSphere random_sphere(Pcg32& rng, float max_radius) {
-    return {Vec3{rng.next_float(), rng.next_float(), rng.next_float()} * 4 - Vec3{2, 2, 2}, rng.next_float() * max_radius};
+    return {Vec3{rng.next_float(), rng.next_float(), rng.next_float()} * 4 - Vec3{2, 2, 2},
+            rng.next_float() * max_radius};
 }
 
 TEST(BoundingSphere, SegmentsBetweenTwoSpheresThroughAThirdAreNeverMissed) {
     Pcg32 rng(7);
     int no = 0;
     for (int trial = 0; trial < 3000; ++trial) {
-        const BoundingSphere from = random_sphere(rng, 0.5f), to = random_sphere(rng, 0.5f), object = random_sphere(rng, 0.4f);
+        const BoundingSphere from = random_sphere(rng, 0.5f), to = random_sphere(rng, 0.5f),
+                             object = random_sphere(rng, 0.4f);
         const bool answer = may_meet_segments(object, from, to, 0);
         no += !answer;
         if (answer) continue;
@@ -95,19 +97,26 @@ StaticSolution solution_with_static_frame(const Scene& scene, RayTracer& tracer,
     solution.photon_paths = paths;
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PlacedFrame placed(scene, tracer, bsdfs, view);
-    solution.static_frame = std::make_shared<const StaticFrame>(make_static_frame(placed.context(), solution, settings, {}));
+    solution.static_frame =
+        std::make_shared<const StaticFrame>(make_static_frame(placed.context(), solution, settings, {}));
     return solution;
 }
 
 /// Every layer of two frames, bit for bit, but the one that marks the pixels redone.
 void expect_same_layers(const LocalizedFrame& a, const LocalizedFrame& b, const std::string& what) {
     const std::pair<const char*, Image LocalizedFrame::*> layers[] = {
-        {"beauty", &LocalizedFrame::beauty},   {"direct", &LocalizedFrame::direct},
-        {"indirect", &LocalizedFrame::indirect}, {"caustic", &LocalizedFrame::caustic},
-        {"specular", &LocalizedFrame::specular}, {"indirect_static", &LocalizedFrame::indirect_static},
-        {"L_y", &LocalizedFrame::L_y},         {"L_t", &LocalizedFrame::L_t},
-        {"influence", &LocalizedFrame::influence}, {"dynamic", &LocalizedFrame::dynamic},
-        {"static_records", &LocalizedFrame::static_records}, {"dynamic_records", &LocalizedFrame::dynamic_records}};
+        {"beauty", &LocalizedFrame::beauty},
+        {"direct", &LocalizedFrame::direct},
+        {"indirect", &LocalizedFrame::indirect},
+        {"caustic", &LocalizedFrame::caustic},
+        {"specular", &LocalizedFrame::specular},
+        {"indirect_static", &LocalizedFrame::indirect_static},
+        {"L_y", &LocalizedFrame::L_y},
+        {"L_t", &LocalizedFrame::L_t},
+        {"influence", &LocalizedFrame::influence},
+        {"dynamic", &LocalizedFrame::dynamic},
+        {"static_records", &LocalizedFrame::static_records},
+        {"dynamic_records", &LocalizedFrame::dynamic_records}};
     for (const auto& [name, layer] : layers) {
         const Image &x = a.*layer, &y = b.*layer;
         ASSERT_EQ(x.width, y.width) << what << " " << name;
@@ -129,16 +138,19 @@ TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
     const Bsdfs bsdfs = make_bsdfs(scene);
     for (const int frame : {scene.frame_count() / 2, 1}) {
         const PlacedFrame placed(scene, tracer, bsdfs, frame);
-        const LocalizedFrame reused = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+        const LocalizedFrame reused =
+            run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
         std::shared_ptr<const StaticFrame> kept = std::move(solution.static_frame);
-        const LocalizedFrame whole = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+        const LocalizedFrame whole =
+            run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
         solution.static_frame = std::move(kept);
         const std::string what = GetParam() + " frame " + std::to_string(frame);
         expect_same_layers(reused, whole, what);
         // Reuse did something: some pixels kept their shadow rays' light or more.
         const FrameStats& r = reused.stats;
         EXPECT_GT(r.pixels_reused + r.pixels_looked_up_again + r.pixels_redone_but_direct, 48 * 36 / 4) << what;
-        EXPECT_EQ(r.pixels_reused + r.pixels_looked_up_again + r.pixels_redone_but_direct + r.pixels_redone, 48 * 36) << what;
+        EXPECT_EQ(r.pixels_reused + r.pixels_looked_up_again + r.pixels_redone_but_direct + r.pixels_redone, 48 * 36)
+            << what;
         // Where only the corrected records change, most pixels need no ray at all.
         if (GetParam() == "ball" || GetParam() == "table") {
             EXPECT_GT(r.pixels_looked_up_again, 48 * 36 / 2) << what;

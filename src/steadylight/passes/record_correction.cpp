@@ -21,7 +21,8 @@ float kept_share(float detail, float sigma, const CorrectionSettings& settings) 
     const float z = std::abs(detail) / sigma;  // no photons: 0 / 0, dropped below
     if (!(z > settings.noise_sigmas)) return 0;
     if (z >= settings.signal_sigmas) return 1;
-    return settings.signal_sigmas * (z - settings.noise_sigmas) / ((settings.signal_sigmas - settings.noise_sigmas) * z);
+    return settings.signal_sigmas * (z - settings.noise_sigmas) /
+           ((settings.signal_sigmas - settings.noise_sigmas) * z);
 }
 
 /// A disc with less of the kernel's weight on the record's surface than this is no estimate of
@@ -70,7 +71,8 @@ float kernel_share(const DiscProbes& probes) {
     return float(3 * inner + outer) / float(4 * DiscProbes::sectors);
 }
 
-Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings, const DiscProbes* probes) {
+Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
+                  const DiscProbes* probes) {
     SL_CHECK(settings.levels >= 1 && settings.levels <= max_correction_levels);
     // The levels up to the first whose disc lies less than min_kernel_share on the surface.
     float share[max_correction_levels];
@@ -124,7 +126,8 @@ IrradianceCache corrected_cache(const IrradianceCache& static_cache, const Photo
         parallel_for_chunks(long(records.size()), 64, [&](long begin, long end) {
             for (long i = begin; i < end; ++i) {
                 IrradianceRecord& r = records[size_t(i)];
-                const Rgb delta = correction_at(dynamic, r.p, r.n, settings, &probes[size_t(i) * size_t(settings.levels)]);
+                const Rgb delta =
+                    correction_at(dynamic, r.p, r.n, settings, &probes[size_t(i) * size_t(settings.levels)]);
                 if (delta == Rgb{}) continue;  // the record as it is, bit for bit
                 const Rgb E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g),
                                std::max(0.0f, r.E.b + delta.b)};

@@ -9,8 +9,9 @@
 // the light does not change). Here instead (docs/localized.md "A steady correction"):
 // - a kernel estimate (Epanechnikov, smooth at its rim) at fixed radii r, 2r, 4r, ... per record,
 //   one look-up at the largest, over the photons near the record's tangent plane (within a
-//   quarter of each radius: a table top's coarse discs do not read the floor under it); the finest estimate is the coarsest plus each level's detail
-//   (its estimate minus the next coarser one's), a Laplacian pyramid of the correction;
+//   quarter of each radius: a table top's coarse discs do not read the floor under it); the finest estimate is the
+//   coarsest plus each level's detail (its estimate minus the next coarser one's), a Laplacian pyramid of the
+//   correction;
 // - each detail is kept only where it stands out of its own noise: its standard error is known
 //   from the photons it sums (Poisson: the square root of the sum of squared weighted powers).
 //   Within noise_sigmas standard errors of zero it is dropped, beyond signal_sigmas kept whole,
@@ -65,7 +66,8 @@ float kernel_share(const DiscProbes& probes);
 
 /// The irradiance change at p (normal n) that the dynamic photons say is there, beyond their
 /// noise (above). `probes` are the point's discs per level (nullptr: whole discs).
-Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings, const DiscProbes* probes);
+Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
+                  const DiscProbes* probes);
 
 /// The static records with correction_at added at each (negative results clamped to 0). `probes`
 /// from CorrectionCoverage (may be empty when `dynamic` is). `changed`, when given, gets a flag

@@ -15,13 +15,16 @@ namespace {
 constexpr Vec3 up{0, 1, 0};
 
 /// A photon on the floor (y = height), arriving from above, of luminance-1-per-unit grey power.
-Photon floor_photon(float x, float z, float power, float height = 0) { return {{x, height, z}, up, up, {power, power, power}}; }
+Photon floor_photon(float x, float z, float power, float height = 0) {
+    return {{x, height, z}, up, up, {power, power, power}};
+}
 
 /// `count` photons of power `power` at Halton points of [x0, x1] x [-4, 4] on the floor.
 std::vector<Photon> uniform_photons(int count, float power, float x0 = -4, float x1 = 4, float height = 0) {
     std::vector<Photon> photons;
     for (int i = 0; i < count; ++i)
-        photons.push_back(floor_photon(x0 + (x1 - x0) * halton(0, uint64_t(i)), -4 + 8 * halton(1, uint64_t(i)), power, height));
+        photons.push_back(
+            floor_photon(x0 + (x1 - x0) * halton(0, uint64_t(i)), -4 + 8 * halton(1, uint64_t(i)), power, height));
     return photons;
 }
 
@@ -36,7 +39,8 @@ Rgb correction(const std::vector<Photon>& photons, Vec3 p, const DiscProbes* pro
 TEST(RecordCorrection, NoiseAloneGivesNoChange) {
     Pcg32 rng(11);
     std::vector<Photon> photons;
-    for (int i = 0; i < 20'000; ++i) photons.push_back(floor_photon(-4 + 8 * rng.next_float(), -4 + 8 * rng.next_float(), i % 2 ? 1e-3f : -1e-3f));
+    for (int i = 0; i < 20'000; ++i)
+        photons.push_back(floor_photon(-4 + 8 * rng.next_float(), -4 + 8 * rng.next_float(), i % 2 ? 1e-3f : -1e-3f));
     const PhotonMap map(photons, long(photons.size()));
     int zero = 0;
     double sum = 0;
@@ -82,7 +86,8 @@ DiscProbes probes_on_the_floor_beyond_x_0(float turn) {
     for (int ring = 0; ring < DiscProbes::rings; ++ring)
         for (int j = 0; j < DiscProbes::sectors; ++j) {
             const float phi = probes.angle(ring, j);
-            if (frame.to_world({std::cos(phi), std::sin(phi), 0}).x > 0) probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
+            if (frame.to_world({std::cos(phi), std::sin(phi), 0}).x > 0)
+                probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
         }
     return probes;
 }
@@ -149,7 +154,8 @@ struct StripedFloor {
         SceneDesc desc = testing::make_empty_scene({0, 2, -5}, {0, 0, 0});
         const int white = testing::add_material(desc, {});
         testing::add_object(desc, make_quad({-4, 0, -4}, {0, 0, 8}, {8, 0, 0}), white);
-        for (int i = -8; i <= 8; ++i) testing::add_object(desc, make_box({0.24f * float(i), 0.01f, 0}, {0.12f, 0.02f, 8}), white);
+        for (int i = -8; i <= 8; ++i)
+            testing::add_object(desc, make_box({0.24f * float(i), 0.01f, 0}, {0.12f, 0.02f, 8}), white);
         return desc;
     }
 };
@@ -166,7 +172,8 @@ TEST(RecordCorrection, RecordsAmongStripsProudOfTheSurfaceReadTheChangeThere) {
     for (const float x : {0.12f, 0.0f}) {  // between two strips, on one
         IrradianceCache cache;
         const float y = StripedFloor::on_a_strip(x) ? 0.02f : 0.0f;
-        for (int i = 0; i < 16; ++i) cache.insert({.p = {x, y, -1.5f + 0.2f * float(i)}, .n = up, .E = {10, 10, 10}, .radius = 0.1f});
+        for (int i = 0; i < 16; ++i)
+            cache.insert({.p = {x, y, -1.5f + 0.2f * float(i)}, .n = up, .E = {10, 10, 10}, .radius = 0.1f});
         const CorrectionCoverage coverage;
         const std::vector<DiscProbes>& probes = coverage.probes(prepared.context(), cache, CorrectionSettings{});
         const IrradianceCache corrected = corrected_cache(cache, map, CorrectionSettings{}, probes);

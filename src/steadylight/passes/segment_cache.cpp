@@ -37,7 +37,8 @@ std::string cache_lock_file(const std::string& file) {
 
 int segment_index(const Scene& scene, const Segment& segment) {
     const std::vector<Segment>& segments = scene.segments();
-    const auto found = std::find_if(segments.begin(), segments.end(), [&](const Segment& s) { return s.first == segment.first; });
+    const auto found =
+        std::find_if(segments.begin(), segments.end(), [&](const Segment& s) { return s.first == segment.first; });
     return int(found - segments.begin());
 }
 
@@ -51,8 +52,8 @@ StaticSolution loaded_solution(CacheFileLoad& load, const Stopwatch& time, const
 }  // namespace
 
 StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, const Segment& segment,
-                                        const PhotonMappingSettings& settings, const std::string& file,
-                                        CacheUse use, std::shared_ptr<const StaticPhotonPaths> paths) {
+                                        const PhotonMappingSettings& settings, const std::string& file, CacheUse use,
+                                        std::shared_ptr<const StaticPhotonPaths> paths) {
     const Stopwatch time;
     const uint64_t inputs = static_inputs_hash(scene, segment, settings);
     CacheFileLoad load = read_cache_file(file, inputs);
@@ -66,11 +67,12 @@ StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, c
     const FileLock lock(cache_lock_file(file));
     load = read_cache_file(file, inputs);
     if (load.cache) return loaded_solution(load, time, file, paths);
-    StaticSolution solution{run_segment_pass(scene, tracer, segment, settings, paths.get()), 0, false, load.rejection, paths};
+    StaticSolution solution{run_segment_pass(scene, tracer, segment, settings, paths.get()), 0, false, load.rejection,
+                            paths};
     write_cache_file(file, solution.cache, inputs);
     solution.seconds = time.elapsed_s();
-    spdlog::info("static cache: {} records computed in {:.2f} s ({}), saved to {}", solution.records(), solution.seconds,
-                 solution.file_note, file);
+    spdlog::info("static cache: {} records computed in {:.2f} s ({}), saved to {}", solution.records(),
+                 solution.seconds, solution.file_note, file);
     return solution;
 }
 

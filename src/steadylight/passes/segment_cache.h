@@ -21,9 +21,9 @@ namespace steadylight {
 /// and the static photon paths when frames reuse them.
 struct StaticSolution {
     IrradianceCache cache;
-    double seconds = 0;     // to compute or to load it
-    bool loaded = false;    // read from the cache file instead of computed
-    std::string file_note;  // why the file was not used, when it was not
+    double seconds = 0;                                     // to compute or to load it
+    bool loaded = false;                                    // read from the cache file instead of computed
+    std::string file_note;                                  // why the file was not used, when it was not
     std::shared_ptr<const StaticPhotonPaths> photon_paths;  // null: frames trace all their photons
     std::shared_ptr<const StaticFrame> static_frame;        // null: frames shade every pixel
     /// The records' disc shares for L_t's correction, made by the first frame that needs them.

@@ -48,7 +48,8 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         h.add(m.metallic), h.add(m.specular), h.add(m.specular_color), h.add(m.alpha), h.add(int(m.alpha_mode));
         h.add(m.alpha_cutoff), h.add(m.normal_scale);
         if (const Rgb sigma = m.absorption(); !is_black(sigma)) h.add(sigma);  // older keys stay valid without one
-        for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture}) {
+        for (const TextureRef* t :
+             {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture}) {
             h.add(t->image), h.add(t->texcoord), h.add(int(t->wrap_s)), h.add(int(t->wrap_t)), h.add(int(t->filter));
             for (const float x : {t->offset.x, t->offset.y, t->rotation, t->scale.x, t->scale.y}) h.add(x);
             if (t->is_set()) {
@@ -76,7 +77,8 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         h.add(camera.world_from_camera), h.add(camera.tan_half_fov_y), h.add(camera.width), h.add(camera.height);
     }
     h.add(settings.photons.global_photons), h.add(settings.photons.max_bounces);
-    h.add(settings.irradiance_estimate.k), h.add(settings.irradiance_estimate.max_radius), h.add(settings.irradiance_stride);
+    h.add(settings.irradiance_estimate.k), h.add(settings.irradiance_estimate.max_radius),
+        h.add(settings.irradiance_stride);
     // Raised whenever the estimate at the photons changes what it computes, so that cache files
     // made by an older steadylight are not taken for this one's. 2: unbiased and boundary-corrected;
     // 3: photons the surface does not reach left out (lamp housings);
@@ -101,9 +103,10 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
     const PhotonMap& static_photons = paths ? paths->global.photons : traced;
     std::optional<IrradiancePhotons> own;
     const IrradiancePhotons& irradiance =
-        paths && paths->irradiance ? *paths->irradiance
-                                   : own.emplace(static_photons, settings.irradiance_stride, settings.irradiance_estimate,
-                                                 surface_coverage(start->context(), Visibility::static_only));
+        paths && paths->irradiance
+            ? *paths->irradiance
+            : own.emplace(static_photons, settings.irradiance_stride, settings.irradiance_estimate,
+                          surface_coverage(start->context(), Visibility::static_only));
     irradiance.compute_all();  // the static cache covers every view; frames take them where nothing changed
     start.reset();             // the views below place the tracer anew
 
@@ -112,8 +115,12 @@ IrradianceCache run_segment_pass(const Scene& scene, RayTracer& tracer, const Se
     IrradianceCache cache(settings.cache);
     for (const int frame : distinct_views(scene, segment)) {
         const PlacedFrame view(scene, tracer, bsdfs, frame);
-        build_photon_cache(cache, {view.context(), irradiance, settings.irradiance_estimate.max_radius, settings.gather,
-                                   Visibility::static_only, {}});
+        build_photon_cache(cache, {view.context(),
+                                   irradiance,
+                                   settings.irradiance_estimate.max_radius,
+                                   settings.gather,
+                                   Visibility::static_only,
+                                   {}});
     }
     return cache;
 }
@@ -131,8 +138,8 @@ std::vector<int> distinct_views(const Scene& scene, const Segment& segment) {
 }
 
 std::shared_ptr<const StaticPhotonPaths> trace_segment_photon_paths(const Scene& scene, RayTracer& tracer,
-                                                                   const Segment& segment,
-                                                                   const PhotonMappingSettings& settings) {
+                                                                    const Segment& segment,
+                                                                    const PhotonMappingSettings& settings) {
     begin_phase("static photon paths");
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PlacedFrame start(scene, tracer, bsdfs, segment.first);

@@ -34,7 +34,7 @@ std::vector<int> distinct_views(const Scene& scene, const Segment& segment);
 /// (computed as needed; the static pass computes them all). `scene` and `tracer` must outlive
 /// the paths. Moves `tracer` to the segment's first frame.
 std::shared_ptr<const StaticPhotonPaths> trace_segment_photon_paths(const Scene& scene, RayTracer& tracer,
-                                                                   const Segment& segment,
-                                                                   const PhotonMappingSettings& settings);
+                                                                    const Segment& segment,
+                                                                    const PhotonMappingSettings& settings);
 
 }  // namespace steadylight

@@ -70,7 +70,11 @@ class Shader {
 public:
     Shader(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
            const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, Visibility visibility)
-        : m_context(context), m_settings(settings), m_caustic(caustic), m_indirect(indirect), m_reflected(reflected),
+        : m_context(context),
+          m_settings(settings),
+          m_caustic(caustic),
+          m_indirect(indirect),
+          m_reflected(reflected),
           m_visibility(visibility) {}
 
     Components shade(const Ray& ray, int depth, Emission emission, const PixelSample& pixel, const LightStrata& strata,
@@ -80,9 +84,10 @@ public:
 private:
     Components shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, Emission emission,
                          const PixelSample& pixel, const LightStrata& strata, Pcg32& rng) const;
-    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata) const;
-    Rgb light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, const LightStrata& strata,
-                         PixelTrace* trace) const;
+    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+                     const LightStrata& strata) const;
+    Rgb light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+                         const LightStrata& strata, PixelTrace* trace) const;
     bool is_flat_mirror(int object) const;
     Rgb trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const;
     void shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
@@ -104,8 +109,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
         // Stratified: the choice of light takes the stratified dimension and passes its
         // remainder on, so each light's area is stratified too, not only the pixel's samples.
         // Lights are chosen by what they could give this point (no MIS here to agree with).
-        const std::optional<LightSample> light =
-            m_context.lights.sample_reusing(sp.p, sp.ns, strata.sample(s));
+        const std::optional<LightSample> light = m_context.lights.sample_reusing(sp.p, sp.ns, strata.sample(s));
         if (!light) continue;
         const Vec3 wi = frame.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
@@ -126,7 +130,8 @@ Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const B
         const auto mirrored = [&](Vec3 v) { return v - mirror.normal * (2 * dot(v, mirror.normal)); };
         const Vec3 image = sp.p - mirror.normal * (2 * side);
         for (int s = 0; s < m_settings.direct_samples; ++s) {
-            const std::optional<LightSample> light = m_context.lights.sample_reusing(image, mirrored(sp.ns), strata.sample(s));
+            const std::optional<LightSample> light =
+                m_context.lights.sample_reusing(image, mirrored(sp.ns), strata.sample(s));
             // A light behind the mirror's plane has no image on this side.
             if (!light || dot(light->p - mirror.point, mirror.normal) * side <= 0) continue;
             const Vec3 towards_image = mirrored(light->wi);
@@ -142,7 +147,9 @@ Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const B
             const SurfacePoint on_mirror = make_surface_point(m_context.scene, m_context.frame, to_mirror, *hit);
             const std::optional<Bounce> reflected =
                 sample_bounce(*bsdf_at(m_context, on_mirror), on_mirror, towards_image, {}, 0, TransportMode::radiance);
-            if (!reflected || m_context.tracer.occluded(spawn_ray_to(on_mirror.p, on_mirror.ng, light->p), m_visibility)) continue;
+            if (!reflected ||
+                m_context.tracer.occluded(spawn_ray_to(on_mirror.p, on_mirror.ng, light->p), m_visibility))
+                continue;
             sum += f * reflected->sample.weight * light->Li * (std::abs(wi.z) / light->pdf);
         }
     }
@@ -185,7 +192,8 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsd
 /// the photons give (its direct light came with the BSDF's own light sampling).
 Rgb Shader::trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const {
     const float u_lobe = rng.next_float();
-    const std::optional<Bounce> bounce = sample_bounce(coat, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
+    const std::optional<Bounce> bounce =
+        sample_bounce(coat, surface, ray.d, rng.next_vec2(), u_lobe, TransportMode::radiance);
     if (!bounce) return {};
     return bounce->sample.weight * m_reflected(bounce->ray);
 }
@@ -193,7 +201,8 @@ Rgb Shader::trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray&
 Components Shader::shade(const Ray& ray, int depth, Emission emission, const PixelSample& pixel,
                          const LightStrata& strata, Pcg32& rng) const {
     const std::optional<Hit> hit = m_context.tracer.intersect(ray, m_visibility);
-    if (pixel.trace && depth > 0) pixel.trace->flags |= hit ? PixelTrace::chain : PixelTrace::chain | PixelTrace::open_chain;
+    if (pixel.trace && depth > 0)
+        pixel.trace->flags |= hit ? PixelTrace::chain : PixelTrace::chain | PixelTrace::open_chain;
     if (!hit) return {};
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
     if (pixel.trace) pixel.trace->add_point(surface.p);
@@ -205,14 +214,14 @@ Components Shader::shade(const Ray& ray, int depth, Emission emission, const Pix
     return c;
 }
 
-Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth,
-                             Emission emission, const PixelSample& pixel, const LightStrata& strata,
-                             Pcg32& rng) const {
+Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, Emission emission,
+                             const PixelSample& pixel, const LightStrata& strata, Pcg32& rng) const {
     Components c;
     // An emitter seen by the camera is direct light (as bright as it is at this frame); seen
     // through a mirror the caller files it under specular.
     const Rgb Le = m_context.frame.emission[size_t(surface.object)];
-    if (emission == Emission::counted && !pixel.skip_direct && !is_black(Le)) c.direct += emitted_radiance_at(m_context, surface, -ray.d);
+    if (emission == Emission::counted && !pixel.skip_direct && !is_black(Le))
+        c.direct += emitted_radiance_at(m_context, surface, -ray.d);
     const SurfacePoint sp = face_towards(surface, ray.d);
     const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
     const Bsdf& bsdf = *surface_bsdf;
@@ -244,8 +253,9 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     }
     if (depth >= m_settings.max_specular_depth) return c;
     // A flat mirror reached by a glossy bounce reflects light that the glossy point sampled.
-    const Emission delta_emission =
-        emission == Emission::sampled && is_flat_mirror(surface.object) ? Emission::sampled_in_mirror : Emission::counted;
+    const Emission delta_emission = emission == Emission::sampled && is_flat_mirror(surface.object)
+                                        ? Emission::sampled_in_mirror
+                                        : Emission::counted;
     // What the bounce sees keeps this camera ray's light strata: each camera ray still reaches
     // at most one diffuse point along each branch.
     const auto follow = [&](const Bounce& bounce, float weight, BranchShare share) {
@@ -261,11 +271,14 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         // the probability sample() gives it (the first lobe for u_lobe 0, the last just below
         // 1), rather than one chosen at random, whose noise would show through every glass
         // object. A single lobe (a mirror, total internal reflection) is followed once.
-        const auto share_of = [](const Bounce& lobe) { return lobe.sample.pdf < 0.5f ? BranchShare::minor : BranchShare::whole; };
+        const auto share_of = [](const Bounce& lobe) {
+            return lobe.sample.pdf < 0.5f ? BranchShare::minor : BranchShare::whole;
+        };
         const std::optional<Bounce> first = sample_bounce(bsdf, surface, ray.d, u, 0.0f, TransportMode::radiance);
         if (first && first->sample.pdf < 1) {
             follow(*first, first->sample.pdf, share_of(*first));
-            const std::optional<Bounce> last = sample_bounce(bsdf, surface, ray.d, u, 0x1.fffffep-1f, TransportMode::radiance);
+            const std::optional<Bounce> last =
+                sample_bounce(bsdf, surface, ray.d, u, 0x1.fffffep-1f, TransportMode::radiance);
             if (last) follow(*last, last->sample.pdf, share_of(*last));
         } else if (first) {
             follow(*first, 1, BranchShare::whole);
@@ -277,9 +290,9 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     // grain, a lamp seen through it now and then as a speck (docs/truth-suite.md, "Glass").
     const int bounces = depth == 0 ? glossy_camera_bounces : 1;
     for (int k = 0; k < bounces; ++k) {
-        const std::optional<Bounce> bounce = k == 0 ? sample_bounce(bsdf, surface, ray.d, u, u_lobe, TransportMode::radiance)
-                                                    : sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), rng.next_float(),
-                                                                    TransportMode::radiance);
+        const std::optional<Bounce> bounce =
+            k == 0 ? sample_bounce(bsdf, surface, ray.d, u, u_lobe, TransportMode::radiance)
+                   : sample_bounce(bsdf, surface, ray.d, rng.next_vec2(), rng.next_float(), TransportMode::radiance);
         if (bounce) follow(*bounce, 1.0f / float(bounces), bounces > 1 ? BranchShare::glossy : BranchShare::whole);
     }
     return c;
@@ -306,17 +319,25 @@ void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
 }
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, const PixelReuse& reuse) {
+                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected,
+                        const PixelReuse& reuse) {
     const Camera& camera = context.frame.camera;
     ShadedFrame out;
-    for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular}) *image = Image(camera.width, camera.height);
+    for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular})
+        *image = Image(camera.width, camera.height);
     for (Image& image : out.extra) image = Image(camera.width, camera.height);
     const int n = settings.samples_per_pixel;
     if (reuse.keep) {
         const size_t pixels = size_t(camera.width) * size_t(camera.height);
-        *reuse.keep = {context.frame, camera.width, camera.height, n, std::vector<PixelSums>(pixels),
-                       std::vector<PixelTrace>(pixels), std::vector<PixelLookUps>(pixels),
-                       std::vector<uint8_t>(pixels * size_t(n), StaticFrame::no_look_up), std::vector<Rgb>(pixels * size_t(n))};
+        *reuse.keep = {context.frame,
+                       camera.width,
+                       camera.height,
+                       n,
+                       std::vector<PixelSums>(pixels),
+                       std::vector<PixelTrace>(pixels),
+                       std::vector<PixelLookUps>(pixels),
+                       std::vector<uint8_t>(pixels * size_t(n), StaticFrame::no_look_up),
+                       std::vector<Rgb>(pixels * size_t(n))};
     }
     const Shader shader(context, settings, caustic, indirect, reflected, reuse.visibility);
     const float inv_n = 1.0f / float(n);
@@ -350,7 +371,8 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                         pixel.sample = s;
                         const Components c = shader.shade(ray, 0, Emission::counted, pixel, ray_strata, path);
                         if (!is_finite(c.sum())) continue;
-                        sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic, sum.specular += c.specular;
+                        sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic,
+                            sum.specular += c.specular;
                         for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];
                     }
                     if (pixel.skip_direct) sum.direct = reuse.base->sums[i].direct;

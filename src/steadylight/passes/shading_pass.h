@@ -22,9 +22,9 @@
 namespace steadylight {
 
 struct ShadingSettings {
-    int samples_per_pixel = 16;    // camera rays per pixel, stratified
-    int direct_samples = 2;        // shadow rays per diffuse hit and camera ray, stratified over the pixel
-    int max_specular_depth = 64;   // mirror, glass and glossy bounces followed from the camera
+    int samples_per_pixel = 16;   // camera rays per pixel, stratified
+    int direct_samples = 2;       // shadow rays per diffuse hit and camera ray, stratified over the pixel
+    int max_specular_depth = 64;  // mirror, glass and glossy bounces followed from the camera
     DensitySettings caustic_estimate{.k = 50, .max_radius = 0.2f};
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(ShadingSettings, samples_per_pixel, direct_samples, max_specular_depth,
@@ -72,12 +72,12 @@ private:
 /// whether the pixel can change (pixel_reuse.h).
 struct PixelTrace {
     enum Flag : uint8_t {
-        chain = 1,       // some ray went on from a mirror, glass or glossy surface
-        open_chain = 2,  // ...and left the scene
-        coat = 4,        // a coat reflected photon-mapped light (read from the global photons)
+        chain = 1,           // some ray went on from a mirror, glass or glossy surface
+        open_chain = 2,      // ...and left the scene
+        coat = 4,            // a coat reflected photon-mapped light (read from the global photons)
         reads_caustics = 8,  // a diffuse point was shaded: it reads the caustic map (an empty one too)
-        gather = 16,     // the method gathered anew (no cache record reached a point)
-        unkept = 32,     // some camera ray's indirect light is not in the kept look-ups (KeptLookUps)
+        gather = 16,         // the method gathered anew (no cache record reached a point)
+        unkept = 32,         // some camera ray's indirect light is not in the kept look-ups (KeptLookUps)
     };
     Vec3 lo{infinity, infinity, infinity}, hi{-infinity, -infinity, -infinity};  // box of every surface point hit
     uint8_t flags = 0;
@@ -105,13 +105,14 @@ struct PixelLookUps {
 struct StaticFrame {
     static constexpr uint8_t no_look_up = 255;
 
-    FrameState made_at;  // the view and lights it was shaded with
+    FrameState made_at;                      // the view and lights it was shaded with
     int width = 0, height = 0, samples = 0;  // samples: camera rays per pixel
     std::vector<PixelSums> sums;
     std::vector<PixelTrace> traces;
     std::vector<PixelLookUps> look_ups;
-    std::vector<uint8_t> ray_look_up;  // per pixel and camera ray: the look-up its indirect light came from, or no_look_up
-    std::vector<Rgb> ray_albedo;       // per pixel and camera ray: the albedo / pi that multiplied it
+    std::vector<uint8_t>
+        ray_look_up;              // per pixel and camera ray: the look-up its indirect light came from, or no_look_up
+    std::vector<Rgb> ray_albedo;  // per pixel and camera ray: the albedo / pi that multiplied it
 
     static size_t bytes_per_pixel(int samples) {
         return sizeof(PixelSums) + sizeof(PixelTrace) + sizeof(PixelLookUps) + size_t(samples) * (1 + sizeof(Rgb));
@@ -129,7 +130,7 @@ enum class PixelWork : uint8_t {
 /// Which camera ray of which pixel is being shaded.
 struct PixelSample {
     int x = 0, y = 0;
-    int sample = 0;   // 0 .. samples_per_pixel - 1
+    int sample = 0;  // 0 .. samples_per_pixel - 1
     int samples = 1;
     /// For points the camera sees directly: the method's memo for the pixel (the shading pass
     /// keeps one of its own for caustics) and how far from its point a value may be reused (about
@@ -163,7 +164,8 @@ PixelMemo::Values remembered(PixelMemo* memo, float reach, const SurfacePoint& s
 /// Indirect irradiance at diffuse point `sp` with normal `n` (facing the viewer), for a camera
 /// ray of `pixel`. `extra` is non-null for the points the camera sees directly: the method adds
 /// its layers there (each ray's values are averaged over the pixel's rays).
-using IndirectIrradiance = std::function<Rgb(const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra)>;
+using IndirectIrradiance =
+    std::function<Rgb(const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra)>;
 
 /// Radiance arriving along a ray that a coat over a diffuse base reflects, read from the
 /// photons (photon_gather.h gather_from_photons): the coat's reflection of indirect light
@@ -179,9 +181,9 @@ struct ShadedFrame {
 /// How shade_frame() treats pixels beyond shading them all: making a static frame, or reusing one.
 struct PixelReuse {
     Visibility visibility = Visibility::everything;  // static_only: the static frame
-    StaticFrame* keep = nullptr;                      // filled with every pixel's sums and trace
-    const StaticFrame* base = nullptr;                // with `work`: what pixels take from
-    const std::vector<PixelWork>* work = nullptr;     // one per pixel, row by row
+    StaticFrame* keep = nullptr;                     // filled with every pixel's sums and trace
+    const StaticFrame* base = nullptr;               // with `work`: what pixels take from
+    const std::vector<PixelWork>* work = nullptr;    // one per pixel, row by row
     /// Gives a reused pixel's sums the method's layers that change between frames although its
     /// terms do not (the localized method's influence).
     std::function<void(int x, int y, const PixelTrace& trace, PixelSums& sums)> reused_layers;

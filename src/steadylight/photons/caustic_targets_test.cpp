@@ -26,7 +26,8 @@ Scene lamp_over_mirror(float intensity) {
     const int glass = add_material(desc, {.type = MaterialType::dielectric, .roughness = 0});  // smooth
     add_object(desc, Sphere{{1.5f, 0.3f, 0}, 0.3f}, glass);
     add_object(desc, Sphere{{1.7f, 0.3f, 0.2f}, 0.3f}, glass);  // its cone overlaps the first's
-    desc.point_lights.push_back({.name = "lamp", .position = {0, 1, 0}, .intensity = {intensity, intensity, intensity}});
+    desc.point_lights.push_back(
+        {.name = "lamp", .position = {0, 1, 0}, .intensity = {intensity, intensity, intensity}});
     return Scene(std::move(desc));
 }
 

@@ -74,7 +74,8 @@ TEST(DynamicPhotons, ObjectOutsideEveryLightPathLeavesTheDynamicMapEmpty) {
 TEST(DynamicPhotons, CausticPhotonsStayOutOfTheDynamicMap) {
     SceneDesc desc = box_desc({});
     desc.materials[0].reflectance = {0, 0, 0};
-    add_object(desc, Sphere{{0, 2, 0}, 0.6f}, add_material(desc, {.type = MaterialType::mirror, .reflectance = {1, 1, 1}}));
+    add_object(desc, Sphere{{0, 2, 0}, 0.6f},
+               add_material(desc, {.type = MaterialType::mirror, .reflectance = {1, 1, 1}}));
     desc.objects.back().marked_dynamic = true;
     const Maps maps = trace_both(Scene(desc));
     long caustic = 0;
@@ -118,7 +119,8 @@ TEST(DynamicPhotons, SecondDynamicHitSpawnsNoNegativePhoton) {
 /// The maps composed from `scene`'s static paths at frame 0 against the maps traced whole.
 void expect_composed_maps_equal_traced(const Scene& scene) {
     const PreparedFrame frame(scene, 0);
-    const ComposedPhotons composed = compose_photons(frame.context(), trace_static_photon_paths(frame.context(), settings));
+    const ComposedPhotons composed =
+        compose_photons(frame.context(), trace_static_photon_paths(frame.context(), settings));
     const TracedPhotons traced = trace_photons(frame.context(), settings);
     EXPECT_TRUE(same_photons(composed.maps.global, traced.global));
     EXPECT_TRUE(same_photons(composed.maps.dynamic, traced.dynamic));
@@ -130,8 +132,10 @@ void expect_composed_maps_equal_traced(const Scene& scene) {
 // retraced from there (negative photons taken from the static path itself), give the complete
 // and dynamic maps photon for photon (photon_paths.h).
 TEST(DynamicPhotons, StaticPathsRetracedWhereTheyMeetDynamicObjectsGiveTheSameMaps) {
-    for (const auto& spheres : std::vector<std::vector<std::pair<Vec3, float>>>{
-             {{{0, 2.5f, 0}, 0.6f}}, {{{0, 3, 0}, 0.5f}, {{0, 1.2f, 0}, 0.6f}}, {{{-0.6f, 1, 0}, 0.5f}, {{0.6f, 1, 0}, 0.5f}}})
+    for (const auto& spheres :
+         std::vector<std::vector<std::pair<Vec3, float>>>{{{{0, 2.5f, 0}, 0.6f}},
+                                                          {{{0, 3, 0}, 0.5f}, {{0, 1.2f, 0}, 0.6f}},
+                                                          {{{-0.6f, 1, 0}, 0.5f}, {{0.6f, 1, 0}, 0.5f}}})
         expect_composed_maps_equal_traced(box_scene(spheres));
 }
 

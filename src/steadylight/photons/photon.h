@@ -13,9 +13,9 @@ namespace steadylight {
 
 struct Photon {
     Vec3 p;
-    Vec3 n;        // unit surface normal on the side the photon arrived from
-    Vec3 wi;       // unit direction back towards where it came from
-    Rgb power;     // W per channel; negative for the negative photons of the dynamic map
+    Vec3 n;               // unit surface normal on the side the photon arrived from
+    Vec3 wi;              // unit direction back towards where it came from
+    Rgb power;            // W per channel; negative for the negative photons of the dynamic map
     uint16_t bounce = 0;  // surface interactions before this one: 0 = a direct hit from the light
 };
 

@@ -35,7 +35,8 @@ float estimate_radius2(const std::vector<Neighbour>& neighbours, const DensitySe
 }  // namespace
 
 PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted)
-    : m_photons(std::move(photons)), m_emitted(emitted),
+    : m_photons(std::move(photons)),
+      m_emitted(emitted),
       m_index(std::make_shared<const PointIndex>(positions_of(m_photons))) {}
 
 PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap& base, std::vector<uint32_t> base_ids,
@@ -78,8 +79,9 @@ Rgb PhotonMap::estimate_irradiance(Vec3 p, Vec3 n, const DensitySettings& settin
     return sum / (pi * r2);
 }
 
-Rgb PhotonMap::estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySettings& settings, const SurfaceCoverage& coverage,
-                                              uint64_t seed, float* radius, DiscProbes* probes) const {
+Rgb PhotonMap::estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySettings& settings,
+                                              const SurfaceCoverage& coverage, uint64_t seed, float* radius,
+                                              DiscProbes* probes) const {
     thread_local std::vector<Neighbour> neighbours;
     k_nearest(p, settings.k, settings.max_radius, neighbours);
     const float r2 = estimate_radius2(neighbours, settings), r = std::sqrt(r2);
@@ -176,8 +178,8 @@ const IrradiancePhotons::Value& IrradiancePhotons::value(uint32_t i) const {
         value = *reused;
     } else {
         const Photon& photon = m_global->photons()[m_photon[i]];
-        value.E = m_coverage ? m_global->estimate_irradiance_on_surface(photon.p, photon.n, m_settings, m_coverage, m_hash[i],
-                                                                        &value.radius, &value.probes)
+        value.E = m_coverage ? m_global->estimate_irradiance_on_surface(photon.p, photon.n, m_settings, m_coverage,
+                                                                        m_hash[i], &value.radius, &value.probes)
                              : m_global->estimate_irradiance(photon.p, photon.n, m_settings, &value.radius);
     }
     uint8_t expected = empty;

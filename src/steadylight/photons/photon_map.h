@@ -22,8 +22,8 @@
 namespace steadylight {
 
 struct DensitySettings {
-    int k = 64;                 // photons per estimate
-    float max_radius = 0.5f;    // scene units; estimates never look further
+    int k = 64;               // photons per estimate
+    float max_radius = 0.5f;  // scene units; estimates never look further
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(DensitySettings, k, max_radius)
 void validate(const DensitySettings& settings, const std::string& where);
@@ -151,9 +151,9 @@ class IrradiancePhotons;
 /// the static photons' order), the same disc, probes that meet the same static surfaces.
 struct StaticIrradianceReuse {
     const IrradiancePhotons* values = nullptr;  // over the static map, probing the static scene
-    std::vector<uint32_t> static_ids;           // per photon of the frame's map: its static photon, or PointIndex::removed
-    PointIndex changed;                         // where static photons were removed and new ones added
-    std::vector<BoundingSphere> dynamic;        // the dynamic objects
+    std::vector<uint32_t> static_ids;     // per photon of the frame's map: its static photon, or PointIndex::removed
+    PointIndex changed;                   // where static photons were removed and new ones added
+    std::vector<BoundingSphere> dynamic;  // the dynamic objects
 };
 
 /// Irradiance precomputed at one in `stride` photons of a global map (Christensen 1999), chosen
@@ -207,8 +207,8 @@ private:
     DensitySettings m_settings;
     SurfaceCoverage m_coverage;
     std::shared_ptr<const StaticIrradianceReuse> m_reuse;
-    std::vector<uint32_t> m_photon;   // per value: its photon, ascending
-    std::vector<uint64_t> m_hash;     // and the photon's hash (the probes' turn)
+    std::vector<uint32_t> m_photon;  // per value: its photon, ascending
+    std::vector<uint64_t> m_hash;    // and the photon's hash (the probes' turn)
     std::vector<Vec3> m_n;
     mutable std::vector<Value> m_values;
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;  // per value: empty, being written, ready

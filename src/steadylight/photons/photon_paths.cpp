@@ -39,7 +39,8 @@ StoredPaths trace_stored(const FrameContext& context, const PhotonSettings& sett
     std::vector<std::vector<Photon>> photons(chunks);
     std::vector<std::vector<PathSegment>> segments(chunks);
     std::vector<uint32_t> segment_counts(size_t(paths.count)), photon_counts(size_t(paths.count));
-    const PhotonTracer tracer(context, settings, kind, Visibility::static_only, paths.targets ? &*paths.targets : nullptr);
+    const PhotonTracer tracer(context, settings, kind, Visibility::static_only,
+                              paths.targets ? &*paths.targets : nullptr);
     const float scale = 1.0f / float(paths.count);
     parallel_for_chunks(paths.count, chunk, [&](long begin, long end) {
         const size_t c = size_t(begin / chunk);
@@ -62,7 +63,7 @@ StoredPaths trace_stored(const FrameContext& context, const PhotonSettings& sett
 /// does from there (in its chunk's vectors).
 struct ChangedPath {
     uint32_t path;
-    int bounce;                                      // its first ray that meets a dynamic object
+    int bounce;                                               // its first ray that meets a dynamic object
     size_t main_begin, main_end, dynamic_begin, dynamic_end;  // its new photons
 };
 
@@ -85,7 +86,8 @@ std::optional<int> first_dynamic_ray(const RayTracer& tracer, const StoredPaths&
 std::vector<ChunkChanges> retrace_changed(const FrameContext& context, const PhotonSettings& settings,
                                           const StoredPaths& paths, MapKind kind, bool dynamic_map) {
     std::vector<ChunkChanges> changes(chunks_of(paths.count));
-    const PhotonTracer tracer(context, settings, kind, Visibility::everything, paths.targets ? &*paths.targets : nullptr);
+    const PhotonTracer tracer(context, settings, kind, Visibility::everything,
+                              paths.targets ? &*paths.targets : nullptr);
     parallel_for_chunks(paths.count, chunk, [&](long begin, long end) {
         ChunkChanges& mine = changes[size_t(begin / chunk)];
         // The negative photons are the static path's own later photons: taken from there.
@@ -94,8 +96,8 @@ std::vector<ChunkChanges> retrace_changed(const FrameContext& context, const Pho
             const std::optional<int> bounce = first_dynamic_ray(context.tracer, paths, size_t(i));
             if (!bounce) continue;
             ChangedPath changed{uint32_t(i), *bounce, mine.main.size(), 0, mine.dynamic.size(), 0};
-            tracer.resume(first_photon_index(kind) + uint64_t(i), paths.segments[paths.first_segment[size_t(i)] + uint32_t(*bounce)],
-                          *bounce, out);
+            tracer.resume(first_photon_index(kind) + uint64_t(i),
+                          paths.segments[paths.first_segment[size_t(i)] + uint32_t(*bounce)], *bounce, out);
             changed.main_end = mine.main.size();
             changed.dynamic_end = mine.dynamic.size();
             mine.paths.push_back(changed);
@@ -190,7 +192,8 @@ size_t StoredPaths::bytes() const {
 }
 
 StaticPhotonPaths trace_static_photon_paths(const FrameContext& context, const PhotonSettings& settings) {
-    return {settings, trace_stored(context, settings, MapKind::global), trace_stored(context, settings, MapKind::caustic)};
+    return {settings, trace_stored(context, settings, MapKind::global),
+            trace_stored(context, settings, MapKind::caustic)};
 }
 
 ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonPaths& paths) {
@@ -198,7 +201,8 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     const StoredPaths& global = paths.global;
     // As trace_photons: the dynamic map comes from the global paths, where there are dynamic objects.
     const bool dynamic = !context.scene.dynamic_objects().empty();
-    const std::vector<ChunkChanges> global_changes = retrace_changed(context, paths.settings, global, MapKind::global, dynamic);
+    const std::vector<ChunkChanges> global_changes =
+        retrace_changed(context, paths.settings, global, MapKind::global, dynamic);
     Composition composed = compose_main(global, global_changes);
     out.global_static_ids.assign(composed.photons.size(), PointIndex::removed);
     for (size_t i = 0; i < composed.base_ids.size(); ++i)
@@ -217,11 +221,12 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
         out.caustic_traced = true;
         return out;
     }
-    const std::vector<ChunkChanges> caustic_changes = retrace_changed(context, paths.settings, caustic, MapKind::caustic, false);
+    const std::vector<ChunkChanges> caustic_changes =
+        retrace_changed(context, paths.settings, caustic, MapKind::caustic, false);
     composed = compose_main(caustic, caustic_changes);
     out.changed_caustic_points = changed_points(caustic.photons, composed);
-    out.maps.caustic = PhotonMap(std::move(composed.photons), caustic.count, caustic.photons, std::move(composed.base_ids),
-                                 std::move(composed.added_ids));
+    out.maps.caustic = PhotonMap(std::move(composed.photons), caustic.count, caustic.photons,
+                                 std::move(composed.base_ids), std::move(composed.added_ids));
     out.caustic_retraced_paths = changed_count(caustic_changes);
     out.retraced_paths += out.caustic_retraced_paths;
     return out;

@@ -22,10 +22,10 @@ namespace steadylight {
 
 /// A ray of a photon path as the static pass traced it, and what resuming the path there needs.
 struct PathSegment {
-    Vec3 o, d;              // the ray (it covers [0, infinity))
-    float t_static;         // its nearest hit in the static scene; infinity when it leaves
-    Rgb power;              // the power the photon carries along it
-    bool specular_path;     // every bounce before it was specular or glossy
+    Vec3 o, d;           // the ray (it covers [0, infinity))
+    float t_static;      // its nearest hit in the static scene; infinity when it leaves
+    Rgb power;           // the power the photon carries along it
+    bool specular_path;  // every bounce before it was specular or glossy
 };
 
 /// The static paths of one map kind.
@@ -34,7 +34,7 @@ struct StoredPaths {
     std::vector<uint32_t> first_segment;  // path i's rays are segments[first_segment[i], first_segment[i + 1])
     std::vector<uint32_t> first_photon;   // and its photons photons[first_photon[i], first_photon[i + 1])
     std::vector<PathSegment> segments;
-    PhotonMap photons;                    // the static map
+    PhotonMap photons;                      // the static map
     std::optional<CausticTargets> targets;  // caustic: where its photons were aimed
 
     size_t bytes() const;
@@ -60,8 +60,8 @@ struct ComposedPhotons {
     std::vector<uint32_t> global_static_ids;  // per global photon: the static one it is, or PointIndex::removed (new)
     std::vector<Vec3> changed_global_points;  // where static global photons were removed or new ones added
     long retraced_paths = 0;
-    long caustic_retraced_paths = 0;  // of them caustic ones
-    bool caustic_traced = false;  // the caustic map was traced whole: its targets moved
+    long caustic_retraced_paths = 0;           // of them caustic ones
+    bool caustic_traced = false;               // the caustic map was traced whole: its targets moved
     std::vector<Vec3> changed_caustic_points;  // unless traced whole: where static caustic photons went or new ones are
 };
 

@@ -18,8 +18,7 @@ void expect_same_photons(const PhotonMap& composed, const PhotonMap& traced, con
     EXPECT_EQ(composed.emitted(), traced.emitted()) << what;
     for (size_t i = 0; i < traced.size(); ++i) {
         const Photon &a = composed.photons()[i], &b = traced.photons()[i];
-        ASSERT_TRUE(same_bits(a, b))
-            << what << " photon " << i << ": " << to_string(a.p) << " vs " << to_string(b.p);
+        ASSERT_TRUE(same_bits(a, b)) << what << " photon " << i << ": " << to_string(a.p) << " vs " << to_string(b.p);
     }
 }
 

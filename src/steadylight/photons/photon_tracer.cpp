@@ -96,8 +96,8 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
         // resumed paths rely on it (photon_walk.h).
         const Frame frame = Frame::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
-        const std::optional<BsdfSample> bs = bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe,
-                                                          TransportMode::importance);
+        const std::optional<BsdfSample> bs =
+            bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe, TransportMode::importance);
         if (!bs) return;
         const Rgb throughput = bs->weight * absorbed;
         const float survive = std::min(1.0f, max_component(throughput));
@@ -148,7 +148,8 @@ bool has_non_diffuse_surface(const FrameContext& context) {
 
 TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& settings, Visibility visibility) {
     const bool dynamic = visibility == Visibility::everything && !context.scene.dynamic_objects().empty();
-    auto [global, dynamic_map] = trace_map(context, settings.global_photons, MapKind::global, settings, visibility, dynamic);
+    auto [global, dynamic_map] =
+        trace_map(context, settings.global_photons, MapKind::global, settings, visibility, dynamic);
     const long caustic_count = has_non_diffuse_surface(context) ? settings.caustic_photons : 0;
     auto [caustic, unused] = trace_map(context, caustic_count, MapKind::caustic, settings, visibility, false);
     return {std::move(global), std::move(caustic), std::move(dynamic_map)};

@@ -37,7 +37,8 @@ Rgb total_power(const PhotonMap& map) {
 // expectation: this checks that power is conserved.
 TEST(PhotonTracer, FurnaceStoresEmittedPowerOverOneMinusAlbedo) {
     const float albedo = 0.6f, Le = 1.0f;
-    const TracedPhotons photons = trace(furnace(albedo, Le), {.global_photons = 100'000, .caustic_photons = 0, .max_bounces = 64});
+    const TracedPhotons photons =
+        trace(furnace(albedo, Le), {.global_photons = 100'000, .caustic_photons = 0, .max_bounces = 64});
     // Half the photons leave the two-sided sphere outwards and are lost.
     const float inward_power = pi * 4 * pi * Le;
     const float expected = inward_power / (1 - albedo);
@@ -46,7 +47,8 @@ TEST(PhotonTracer, FurnaceStoresEmittedPowerOverOneMinusAlbedo) {
 
 TEST(PhotonTracer, FurnaceIrradianceEstimateIsPiTimesRadiance) {
     const float albedo = 0.5f, Le = 0.5f;
-    const TracedPhotons photons = trace(furnace(albedo, Le), {.global_photons = 200'000, .caustic_photons = 0, .max_bounces = 64});
+    const TracedPhotons photons =
+        trace(furnace(albedo, Le), {.global_photons = 200'000, .caustic_photons = 0, .max_bounces = 64});
     // Radiance Le / (1 - a) = 1 in every direction, so irradiance pi everywhere.
     const Vec3 p{0, -1, 0}, n{0, 1, 0};
     // About 32k photons per unit area: k = 2000 keeps the estimate's noise near 2%.
@@ -84,7 +86,8 @@ TEST(PhotonTracer, SamePhotonsForOneAndTwoThreads) {
     ASSERT_EQ(one.global.size(), two.global.size());
     ASSERT_EQ(one.caustic.size(), two.caustic.size());
     for (size_t i = 0; i < one.global.size(); ++i) ASSERT_EQ(one.global.photons()[i].p, two.global.photons()[i].p);
-    for (size_t i = 0; i < one.caustic.size(); ++i) ASSERT_EQ(one.caustic.photons()[i].power, two.caustic.photons()[i].power);
+    for (size_t i = 0; i < one.caustic.size(); ++i)
+        ASSERT_EQ(one.caustic.photons()[i].power, two.caustic.photons()[i].power);
 }
 
 }  // namespace

@@ -149,7 +149,9 @@ void PointIndex::build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper) {
     const int axis = widest_axis(lower, upper);
     const uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(m_entries.begin() + begin, m_entries.begin() + mid, m_entries.begin() + end,
-                     [axis](const Entry& a, const Entry& b) { return a.p[axis] != b.p[axis] ? a.p[axis] < b.p[axis] : a.id < b.id; });
+                     [axis](const Entry& a, const Entry& b) {
+                         return a.p[axis] != b.p[axis] ? a.p[axis] < b.p[axis] : a.id < b.id;
+                     });
     m_axis[mid] = uint8_t(axis);
     m_split[mid] = m_entries[mid].p[axis];
     Vec3 left_upper = upper, right_lower = lower;

@@ -80,7 +80,7 @@ private:
     template <class... Parts>
     static void search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
 
-    std::vector<Entry> m_entries;    // in tree order
+    std::vector<Entry> m_entries;  // in tree order
     // A range [begin, end) longer than a leaf splits at mid = (begin + end) / 2 into [begin, mid)
     // (coordinates <= the split value) and [mid, end) (>=); its axis and value are kept at mid.
     std::vector<uint8_t> m_axis;

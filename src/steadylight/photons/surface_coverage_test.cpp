@@ -27,7 +27,8 @@ SceneDesc floor_wall_cube_ball() {
 /// sixteenth-quantised sample).
 double mean_coverage(const SurfaceCoverage& coverage, Vec3 p, Vec3 n) {
     double sum = 0;
-    for (uint64_t seed = 0; seed < 64; ++seed) sum += coverage.probes(p, n, 0.2f, 0.2f * coverage_lift, 0.2f, seed).share();
+    for (uint64_t seed = 0; seed < 64; ++seed)
+        sum += coverage.probes(p, n, 0.2f, 0.2f * coverage_lift, 0.2f, seed).share();
     return sum / 64;
 }
 
@@ -41,13 +42,13 @@ TEST(SurfaceCoverage, CountsTheShareOfTheDiscOnTheSurface) {
     const SurfaceCoverage coverage = surface_coverage(prepared.context(), Visibility::everything);
     const Vec3 up{0, 1, 0};
     EXPECT_EQ(coverage.probes({1, 0, 1}, up, 0.2f, 0.2f * coverage_lift, 0.2f, 0).share(), 1.0f);
-    EXPECT_NEAR(mean_coverage(coverage, {3, 2.5f, 3}, up), 1.0, 1e-6);  // the ball's top
-    EXPECT_NEAR(mean_coverage(coverage, {1e-3f, 0, 1}, up), 0.5, 0.03);   // floor at the wall
+    EXPECT_NEAR(mean_coverage(coverage, {3, 2.5f, 3}, up), 1.0, 1e-6);          // the ball's top
+    EXPECT_NEAR(mean_coverage(coverage, {1e-3f, 0, 1}, up), 0.5, 0.03);         // floor at the wall
     EXPECT_NEAR(mean_coverage(coverage, {0, 1e-3f, 1}, {1, 0, 0}), 0.5, 0.03);  // wall at the floor
-    EXPECT_NEAR(mean_coverage(coverage, {2.499f, 1, 2}, up), 0.5, 0.03);  // the cube's rim
-    EXPECT_NEAR(mean_coverage(coverage, {1, 0, 1e-3f}, up), 0.5, 0.03);   // the floor's open edge
+    EXPECT_NEAR(mean_coverage(coverage, {2.499f, 1, 2}, up), 0.5, 0.03);        // the cube's rim
+    EXPECT_NEAR(mean_coverage(coverage, {1, 0, 1e-3f}, up), 0.5, 0.03);         // the floor's open edge
     EXPECT_NEAR(mean_coverage(coverage, {3.999f, 0, 3.999f}, up), 0.25, 0.03);  // open corner
-    EXPECT_NEAR(mean_coverage(coverage, {1.499f, 0, 2}, up), 0.5, 0.03);  // at the cube's foot
+    EXPECT_NEAR(mean_coverage(coverage, {1.499f, 0, 2}, up), 0.5, 0.03);        // at the cube's foot
 }
 
 // Whether a photon lies on the surface an estimate is for: the floor reaches its own points, but

@@ -9,8 +9,8 @@ namespace steadylight {
 namespace {
 
 constexpr int block_size = 4;
-constexpr double small_change = 0.2;   // "true change below 20% of Y": leaves out coverage edges
-constexpr double no_change = 0.002;    // "far": the reference changes by less than 0.2%
+constexpr double small_change = 0.2;  // "true change below 20% of Y": leaves out coverage edges
+constexpr double no_change = 0.002;   // "far": the reference changes by less than 0.2%
 
 bool kept(const PixelMask& left_out, size_t i) { return left_out.empty() || !left_out[i]; }
 
@@ -40,7 +40,8 @@ ImageError image_error(const Image& image, const Image& reference, const PixelMa
             pixels.y += block.y, pixels.y_ref += block.y_ref, pixels.diff2 += block.diff2, pixels.count += block.count;
             blocks.add(block.y / double(block.count), block.y_ref / double(block.count));
         }
-    return {pixels.relative_rmse(), blocks.relative_rmse(), pixels.y_ref > 0 ? pixels.y / pixels.y_ref : 0, pixels.count};
+    return {pixels.relative_rmse(), blocks.relative_rmse(), pixels.y_ref > 0 ? pixels.y / pixels.y_ref : 0,
+            pixels.count};
 }
 
 PixelMask emitter_mask(const FrameContext& context) {
@@ -49,7 +50,8 @@ PixelMask emitter_mask(const FrameContext& context) {
     PixelMask sees(size_t(w) * size_t(h), 0), mask(sees.size(), 0);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const std::optional<Hit> hit = context.tracer.intersect(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f));
+            const std::optional<Hit> hit =
+                context.tracer.intersect(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f));
             sees[size_t(y) * size_t(w) + size_t(x)] = hit && context.scene.object(hit->object).is_emitter();
         }
     for (int y = 0; y < h; ++y)
@@ -86,7 +88,8 @@ TemporalNoise temporal_noise(const std::vector<FramePair>& method, const std::ve
             const double own = luminance(method[p].b.pixels[i]) - luminance(method[p].a.pixels[i]);
             const double signed_diff = own - change, diff = std::abs(signed_diff);
             all_diff += diff, all_y += y, ++noise.all_pixels;
-            if (far[i]) far_diff += diff, far_signed += signed_diff, far_own += std::abs(own), far_y += y, ++noise.far_pixels;
+            if (far[i])
+                far_diff += diff, far_signed += signed_diff, far_own += std::abs(own), far_y += y, ++noise.far_pixels;
         }
     noise.all = all_y > 0 ? all_diff / all_y : 0;
     noise.far = far_y > 0 ? far_diff / far_y : 0;

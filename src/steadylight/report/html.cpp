@@ -13,12 +13,23 @@ std::string escape_html(const std::string& text) {
     out.reserve(text.size());
     for (const char c : text) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&#39;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -39,7 +50,9 @@ std::string encode_base64(const std::vector<unsigned char>& bytes) {
     return out;
 }
 
-std::string png_data_uri(const std::vector<unsigned char>& png) { return "data:image/png;base64," + encode_base64(png); }
+std::string png_data_uri(const std::vector<unsigned char>& png) {
+    return "data:image/png;base64," + encode_base64(png);
+}
 
 std::vector<unsigned char> read_file_bytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

@@ -58,7 +58,8 @@ PlotSeries plot_series(const StatsSeries& series, const std::string& name, const
 std::string method_comparison_plot(const std::vector<StatsSeries>& all, const std::string& title,
                                    const std::string& y_label, const StatsField& field, bool several_scenes) {
     LinePlot plot{title, "frame", y_label, {}};
-    for (const StatsSeries& series : all) plot.series.push_back(plot_series(series, series_name(series, several_scenes), field));
+    for (const StatsSeries& series : all)
+        plot.series.push_back(plot_series(series, series_name(series, several_scenes), field));
     return build_svg_line_plot(plot);
 }
 
@@ -68,7 +69,8 @@ std::string fields_plot(const StatsSeries& series, const std::string& title, con
                         const std::vector<const StatsField*>& fields) {
     LinePlot plot{title, "frame", y_label, {}};
     for (const StatsField* field : fields)
-        if (std::any_of(series.frames.begin(), series.frames.end(), [&](const FrameStats& s) { return field->value(s) > 0; }))
+        if (std::any_of(series.frames.begin(), series.frames.end(),
+                        [&](const FrameStats& s) { return field->value(s) > 0; }))
             plot.series.push_back(plot_series(series, field->label, *field));
     return plot.series.empty() ? "" : build_svg_line_plot(plot) + "\n";
 }
@@ -96,33 +98,41 @@ std::string plots_html(const std::vector<StatsSeries>& all) {
     const StatsField& records = count_fields().front();
     std::string html = "<div class=\"plots\">\n";
     html += method_comparison_plot(all, "time per frame", "seconds", total, several_scenes) + "\n";
-    html += method_comparison_plot(all, "irradiance records computed per frame", "records", records, several_scenes) + "\n";
-    const auto paths = std::find_if(count_fields().begin(), count_fields().end(),
-                                    [](const StatsField& field) { return std::string_view(field.label) == "photon paths traced"; });
+    html +=
+        method_comparison_plot(all, "irradiance records computed per frame", "records", records, several_scenes) + "\n";
+    const auto paths = std::find_if(count_fields().begin(), count_fields().end(), [](const StatsField& field) {
+        return std::string_view(field.label) == "photon paths traced";
+    });
     html += method_comparison_plot(all, "photon paths traced per frame", "paths", *paths, several_scenes) + "\n";
-    for (const StatsSeries& series : all) html += phase_plot(series, several_scenes) + reuse_plot(series, several_scenes);
+    for (const StatsSeries& series : all)
+        html += phase_plot(series, several_scenes) + reuse_plot(series, several_scenes);
     return html + "</div>\n";
 }
 
 std::string overview_html(const FrameCatalog& catalog) {
-    std::string html = "<table class=\"overview\">\n<tr><th>scene</th><th>frames</th><th>first</th><th>last</th>"
-                       "<th>methods</th><th>without statistics</th><th>total time (s)</th></tr>\n";
+    std::string html =
+        "<table class=\"overview\">\n<tr><th>scene</th><th>frames</th><th>first</th><th>last</th>"
+        "<th>methods</th><th>without statistics</th><th>total time (s)</th></tr>\n";
     for (const std::string& scene : catalog.scenes()) {
         const std::vector<CatalogFrame> frames = catalog.frames_of(scene);
         std::vector<std::string> methods;
         int without_stats = 0;
         double total_s = 0;
         for (const CatalogFrame& frame : frames) {
-            if (!frame.stats) ++without_stats;
-            else total_s += frame.stats->total_s;
+            if (!frame.stats)
+                ++without_stats;
+            else
+                total_s += frame.stats->total_s;
             if (frame.stats && std::find(methods.begin(), methods.end(), frame.method()) == methods.end())
                 methods.push_back(frame.method());
         }
         std::string method_list;
-        for (const std::string& method : methods) method_list += (method_list.empty() ? "" : ", ") + escape_html(method);
-        html += fmt::format("<tr><th>{}</th><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.2f}</td></tr>\n",
-                            escape_html(scene), frames.size(), frames.front().frame, frames.back().frame, method_list,
-                            without_stats, total_s);
+        for (const std::string& method : methods)
+            method_list += (method_list.empty() ? "" : ", ") + escape_html(method);
+        html +=
+            fmt::format("<tr><th>{}</th><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.2f}</td></tr>\n",
+                        escape_html(scene), frames.size(), frames.front().frame, frames.back().frame, method_list,
+                        without_stats, total_s);
     }
     return html + "</table>\n";
 }
@@ -153,8 +163,8 @@ std::string build_report_html(const ReportSettings& settings) {
 
 std::string write_report(const ReportSettings& settings) {
     const std::string path = settings.html_file.empty()
-        ? (std::filesystem::path(settings.out_dir) / "report.html").string()
-        : settings.html_file;
+                                 ? (std::filesystem::path(settings.out_dir) / "report.html").string()
+                                 : settings.html_file;
     const std::string html = build_report_html(settings);
     try {
         write_text_file(path, html);

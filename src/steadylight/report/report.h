@@ -10,9 +10,9 @@
 namespace steadylight {
 
 struct ReportSettings {
-    std::string out_dir;        // the folder `steadylight render --out` wrote
-    std::optional<int> frame;   // frame whose AOVs are shown; default: each scene's middle frame
-    std::string html_file;      // default: <out_dir>/report.html
+    std::string out_dir;       // the folder `steadylight render --out` wrote
+    std::optional<int> frame;  // frame whose AOVs are shown; default: each scene's middle frame
+    std::string html_file;     // default: <out_dir>/report.html
 };
 
 /// \brief The HTML page for the frames in `settings.out_dir`.

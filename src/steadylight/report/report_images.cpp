@@ -12,17 +12,18 @@ namespace {
 
 std::string thumbnail_caption(const CatalogFrame& frame) {
     std::string caption = fmt::format("{:04d}", frame.frame);
-    if (frame.stats) caption += fmt::format("<br>{} &middot; {:.2f} s", escape_html(frame.method()), frame.stats->total_s);
+    if (frame.stats)
+        caption += fmt::format("<br>{} &middot; {:.2f} s", escape_html(frame.method()), frame.stats->total_s);
     return caption;
 }
 
 std::string thumbnail(const CatalogFrame& frame) {
-    const std::string image = frame.png_file.empty()
-        ? "<div class=\"missing\">no PNG</div>"
-        : fmt::format(R"(<img src="{}" alt="{} frame {}">)", png_data_uri(read_file_bytes(frame.png_file)),
-                      escape_html(frame.scene), frame.frame);
-    return fmt::format("<figure class=\"frame\" data-frame=\"{}\">{}<figcaption>{}</figcaption></figure>\n", frame.frame,
-                       image, thumbnail_caption(frame));
+    const std::string image = frame.png_file.empty() ? "<div class=\"missing\">no PNG</div>"
+                                                     : fmt::format(R"(<img src="{}" alt="{} frame {}">)",
+                                                                   png_data_uri(read_file_bytes(frame.png_file)),
+                                                                   escape_html(frame.scene), frame.frame);
+    return fmt::format("<figure class=\"frame\" data-frame=\"{}\">{}<figcaption>{}</figcaption></figure>\n",
+                       frame.frame, image, thumbnail_caption(frame));
 }
 
 bool has_channel(const ExrLayerInfo& layer, const char* channel) {
@@ -42,8 +43,7 @@ bool is_beauty(const std::string& layer_name) { return layer_name.empty() || lay
 std::vector<ExrLayerInfo> shown_layers(std::vector<ExrLayerInfo> layers) {
     const bool named_beauty =
         std::any_of(layers.begin(), layers.end(), [](const ExrLayerInfo& l) { return l.name == "beauty"; });
-    if (named_beauty)
-        std::erase_if(layers, [](const ExrLayerInfo& l) { return l.name.empty(); });
+    if (named_beauty) std::erase_if(layers, [](const ExrLayerInfo& l) { return l.name.empty(); });
     std::stable_partition(layers.begin(), layers.end(), [](const ExrLayerInfo& l) { return is_beauty(l.name); });
     return layers;
 }
@@ -53,15 +53,17 @@ std::string layer_figure(const std::string& exr_file, const ExrLayerInfo& layer)
     if (!is_viewable(layer)) {
         std::string channels;
         for (const std::string& channel : layer.channels) channels += (channels.empty() ? "" : ", ") + channel;
-        return fmt::format("<figure class=\"aov-skipped\" data-layer=\"{0}\"><figcaption>{0}: channels {1}, neither "
-                           "RGB nor Y, not shown</figcaption></figure>\n",
-                           escape_html(shown_name), escape_html(channels));
+        return fmt::format(
+            "<figure class=\"aov-skipped\" data-layer=\"{0}\"><figcaption>{0}: channels {1}, neither "
+            "RGB nor Y, not shown</figcaption></figure>\n",
+            escape_html(shown_name), escape_html(channels));
     }
     // The default view (no exposure, standard curve): AOVs such as record counts are data.
     const std::vector<unsigned char> png = encode_png(read_exr(exr_file, layer.name));
-    return fmt::format("<figure class=\"aov\" data-layer=\"{0}\"><img src=\"{1}\" alt=\"{0}\"><figcaption>{0}</figcaption>"
-                       "</figure>\n",
-                       escape_html(shown_name), png_data_uri(png));
+    return fmt::format(
+        "<figure class=\"aov\" data-layer=\"{0}\"><img src=\"{1}\" alt=\"{0}\"><figcaption>{0}</figcaption>"
+        "</figure>\n",
+        escape_html(shown_name), png_data_uri(png));
 }
 
 std::string scene_aovs(const std::string& scene, const std::vector<CatalogFrame>& frames,
@@ -69,10 +71,12 @@ std::string scene_aovs(const std::string& scene, const std::vector<CatalogFrame>
     std::string html = "<h3>" + escape_html(scene);
     const std::optional<int> chosen = choose_aov_frame(frames, requested_frame);
     if (!chosen) return html + "</h3>\n<p>No frame with an EXR.</p>\n";
-    const CatalogFrame& frame = *std::find_if(frames.begin(), frames.end(), [&](const CatalogFrame& f) { return f.frame == *chosen; });
+    const CatalogFrame& frame =
+        *std::find_if(frames.begin(), frames.end(), [&](const CatalogFrame& f) { return f.frame == *chosen; });
     html += fmt::format(", frame {}</h3>\n", frame.frame);
     if (requested_frame && *requested_frame != frame.frame)
-        html += fmt::format("<p>Frame {} has no EXR in this scene; showing frame {}.</p>\n", *requested_frame, frame.frame);
+        html +=
+            fmt::format("<p>Frame {} has no EXR in this scene; showing frame {}.</p>\n", *requested_frame, frame.frame);
     html += "<div class=\"aovs\" data-scene=\"" + escape_html(scene) + "\">\n";
     const std::vector<ExrLayerInfo> layers = shown_layers(read_exr_layers(frame.exr_file));
     for (const ExrLayerInfo& layer : layers) html += layer_figure(frame.exr_file, layer);
@@ -84,7 +88,8 @@ std::string scene_aovs(const std::string& scene, const std::vector<CatalogFrame>
 std::string build_contact_sheet_html(const FrameCatalog& catalog) {
     std::string html;
     for (const std::string& scene : catalog.scenes()) {
-        html += "<h3>" + escape_html(scene) + "</h3>\n<div class=\"sheet\" data-scene=\"" + escape_html(scene) + "\">\n";
+        html +=
+            "<h3>" + escape_html(scene) + "</h3>\n<div class=\"sheet\" data-scene=\"" + escape_html(scene) + "\">\n";
         for (const CatalogFrame& frame : catalog.frames_of(scene)) html += thumbnail(frame);
         html += "</div>\n";
     }
@@ -102,7 +107,8 @@ std::optional<int> choose_aov_frame(const std::vector<CatalogFrame>& frames, std
 
 std::string build_aov_html(const FrameCatalog& catalog, std::optional<int> requested_frame) {
     std::string html;
-    for (const std::string& scene : catalog.scenes()) html += scene_aovs(scene, catalog.frames_of(scene), requested_frame);
+    for (const std::string& scene : catalog.scenes())
+        html += scene_aovs(scene, catalog.frames_of(scene), requested_frame);
     return html;
 }
 

@@ -69,7 +69,8 @@ std::string frames_row(const SceneSeries& scene) {
 std::string scene_table(const SceneSeries& scene) {
     std::string html = "<table class=\"summary\" data-scene=\"" + escape_html(scene.scene) + "\">\n<caption>" +
                        escape_html(scene.scene) + "</caption>\n" + header_row(scene) + frames_row(scene);
-    for (const StatsField& field : phase_time_fields()) html += field_row(scene, field.label + std::string(" (s)"), field);
+    for (const StatsField& field : phase_time_fields())
+        html += field_row(scene, field.label + std::string(" (s)"), field);
     for (const StatsField& field : count_fields()) html += field_row(scene, field.label, field);
     return html + "</table>\n";
 }

@@ -55,9 +55,11 @@ void write_fake_frame(const std::string& dir, const std::string& scene, const st
     Image beauty(4, 3), direct(4, 3);
     for (Rgb& p : beauty.pixels) p = {0.5f, 0.25f, float(frame) / 10};
     for (Rgb& p : direct.pixels) p = {0.2f, 0.2f, 0.2f};
-    write_exr(frame_file_name(dir, scene, frame, "exr"), {{beauty_layer, &beauty}, {"direct", &direct}, {"L_y", &direct}});
+    write_exr(frame_file_name(dir, scene, frame, "exr"),
+              {{beauty_layer, &beauty}, {"direct", &direct}, {"L_y", &direct}});
     write_png(frame_file_name(dir, scene, frame, "png"), beauty);
-    write_text_file(frame_file_name(dir, scene, frame, "stats.json"), nlohmann::json(fake_stats(method, frame)).dump(2));
+    write_text_file(frame_file_name(dir, scene, frame, "stats.json"),
+                    nlohmann::json(fake_stats(method, frame)).dump(2));
 }
 
 size_t count(const std::string& text, const std::string& what) {
@@ -199,7 +201,8 @@ TEST(Report, AFramesBeautyShowsOnceAndGreyLayersShowToo) {
     for (Rgb& p : beauty.pixels) p = {0.5f, 0.25f, 0.1f};
     for (Rgb& p : influence.pixels) p = {1, 1, 1};
     // As render writes it: the beauty unnamed and as `beauty`, `influence` as the one channel Y.
-    write_exr(frame_file_name(dir, "ball", 0, "exr"), frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence, true}}));
+    write_exr(frame_file_name(dir, "ball", 0, "exr"),
+              frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence, true}}));
     const std::string html = report_of(dir);
     EXPECT_EQ(count(html, "data-layer=\"beauty\""), 1u);
     EXPECT_EQ(count(html, "<figure class=\"aov\" data-layer=\"influence\">"), 1u);
@@ -230,7 +233,8 @@ TEST(Report, PathFramesArePlottedAndComparedWithPhoton) {
     // The table: the path tracer's figures, and photon figures it lacks shown as 0.
     EXPECT_NE(html.find("<th>photon</th><th>path</th><th>photon / path</th>"), std::string::npos);
     EXPECT_NE(html.find("<th>total (s)</th><td>3.700</td><td>0.500</td><td>7.40x</td>"), std::string::npos);
-    EXPECT_NE(html.find("<th>irradiance records computed</th><td>5000.5</td><td>0</td><td>&mdash;</td>"), std::string::npos);
+    EXPECT_NE(html.find("<th>irradiance records computed</th><td>5000.5</td><td>0</td><td>&mdash;</td>"),
+              std::string::npos);
     EXPECT_NE(html.find("<th>camera samples (path)</th><td>0</td><td>192.0</td><td>&mdash;</td>"), std::string::npos);
     EXPECT_NE(html.find("<th>rays traced (path)</th><td>0</td><td>1030.0</td>"), std::string::npos);
     EXPECT_NE(html.find("<th>path length (vertices a sample)</th><td>0</td><td>2.000</td>"), std::string::npos);

@@ -72,7 +72,9 @@ const std::vector<StatsField>& count_fields() {
         {"camera samples (path)", [](const FrameStats& s) { return double(s.camera_samples); }},
         {"rays traced (path)", [](const FrameStats& s) { return double(s.path_rays); }},
         {"path length (vertices a sample)",
-         [](const FrameStats& s) { return s.camera_samples > 0 ? double(s.path_vertices) / double(s.camera_samples) : 0.0; }},
+         [](const FrameStats& s) {
+             return s.camera_samples > 0 ? double(s.path_vertices) / double(s.camera_samples) : 0.0;
+         }},
     };
     return fields;
 }

@@ -68,8 +68,8 @@ std::string draw_axes(const LinePlot& plot, const PlotArea& area, const std::vec
         svg += fmt::format(R"(<line x1="{0:.1f}" x2="{0:.1f}" y1="{1:.1f}" y2="{2:.1f}" stroke="#333"/>)"
                            R"(<text x="{0:.1f}" y="{3:.1f}" text-anchor="middle">{4}</text>)",
                            area.px(tick), area.bottom, area.bottom + 5, area.bottom + 18, format_tick(tick, x_step));
-    svg += fmt::format(R"(<path d="M{0:.1f},{1:.1f}V{2:.1f}H{3:.1f}" fill="none" stroke="#333"/>)", area.left,
-                       area.top, area.bottom, area.right);
+    svg += fmt::format(R"(<path d="M{0:.1f},{1:.1f}V{2:.1f}H{3:.1f}" fill="none" stroke="#333"/>)", area.left, area.top,
+                       area.bottom, area.right);
     svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{}</text>)", (area.left + area.right) / 2,
                        area.bottom + 36, escape_html(plot.x_label));
     svg += fmt::format(R"svg(<text transform="translate(14,{:.1f}) rotate(-90)" text-anchor="middle">{}</text>)svg",

@@ -24,8 +24,11 @@ std::vector<std::vector<std::pair<double, double>>> polylines(const std::string&
 }
 
 LinePlot two_series_plot() {
-    return {"time per frame", "frame", "seconds",
-            {{"photon", {0, 1, 2, 3, 4}, {3.7, 3.8, 3.6, 3.9, 3.75}}, {"localized", {0, 1, 2, 3, 4}, {2.7, 2.6, 2.8, 2.7, 2.65}}}};
+    return {"time per frame",
+            "frame",
+            "seconds",
+            {{"photon", {0, 1, 2, 3, 4}, {3.7, 3.8, 3.6, 3.9, 3.75}},
+             {"localized", {0, 1, 2, 3, 4}, {2.7, 2.6, 2.8, 2.7, 2.65}}}};
 }
 
 TEST(SvgPlot, NiceTicksStepByOneTwoOrFive) {

@@ -21,8 +21,8 @@
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "steadylight/base/file_lock.h"
 #include "steadylight/output/frame_names.h"
@@ -76,12 +76,15 @@ std::optional<ClaimFile> read_claim(const std::string& path) {
     }
 }
 
-bool is_mine(const std::optional<ClaimFile>& claim) { return claim && claim->host == host_name() && claim->pid == ::getpid(); }
+bool is_mine(const std::optional<ClaimFile>& claim) {
+    return claim && claim->host == host_name() && claim->pid == ::getpid();
+}
 
 /// Writes this process's claim to `path`: created only if absent (link(2) is atomic, also on
 /// NFS) unless `replace`. False when it exists already.
 bool write_claim(const std::string& path, bool replace) {
-    const nlohmann::json json = {{"host", host_name()}, {"pid", ::getpid()},
+    const nlohmann::json json = {{"host", host_name()},
+                                 {"pid", ::getpid()},
                                  {"time", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::time(nullptr)))}};
     const std::string temporary = fmt::format("{}.{}-{}.tmp", path, host_name(), ::getpid());
     std::ofstream(temporary) << json.dump() << "\n";
@@ -136,7 +139,8 @@ struct FrameClaim::Refresher {
     std::thread thread;
 };
 
-FrameClaim::FrameClaim(std::string path, double refresh_s) : m_path(std::move(path)), m_refresher(std::make_unique<Refresher>()) {
+FrameClaim::FrameClaim(std::string path, double refresh_s)
+    : m_path(std::move(path)), m_refresher(std::make_unique<Refresher>()) {
     m_refresher->thread = std::thread([this, refresh = std::chrono::duration<double>(refresh_s)] {
         std::unique_lock lock(m_refresher->mutex);
         while (!m_refresher->wake.wait_for(lock, refresh, [this] { return m_refresher->stop; }))
@@ -167,7 +171,8 @@ ClaimAttempt try_claim_frame(const std::string& out_dir, const std::string& scen
     const FileLock lock(lock_path);
     ClaimAttempt attempt;
     if (!write_claim(path, false)) {
-        const double age_s = file_system_now_s(lock_path) - modified_s(path).value_or(-std::numeric_limits<double>::infinity());
+        const double age_s =
+            file_system_now_s(lock_path) - modified_s(path).value_or(-std::numeric_limits<double>::infinity());
         const std::optional<ClaimFile> holder = read_claim(path);
         const std::string why = dead_claim_reason(holder, age_s, stale_s);
         if (why.empty()) {

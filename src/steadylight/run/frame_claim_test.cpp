@@ -32,7 +32,8 @@ class FrameClaimTest : public ::testing::Test {
 protected:
     void SetUp() override {
         m_dir = fs::temp_directory_path() / fmt::format("steadylight_claim_{}_{}",
-                                                        ::testing::UnitTest::GetInstance()->current_test_info()->name(), getpid());
+                                                        ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                                                        getpid());
         fs::remove_all(m_dir);
         fs::create_directories(m_dir);
         m_claim = frame_claim_name(m_dir.string(), "scene", 3);
@@ -105,7 +106,8 @@ TEST_F(FrameClaimTest, TakesOverAClaimNotRefreshedWithinTheLimit) {
     write_claim("elsewhere", 4242, 200);
     const ClaimAttempt attempt = claim(120);
     ASSERT_TRUE(attempt.claim);
-    EXPECT_NE(attempt.taken_over.find("not refreshed for 200 s, the limit is 120 s"), std::string::npos) << attempt.taken_over;
+    EXPECT_NE(attempt.taken_over.find("not refreshed for 200 s, the limit is 120 s"), std::string::npos)
+        << attempt.taken_over;
     EXPECT_EQ(read_claim().at("host"), this_host());
 }
 

@@ -32,7 +32,8 @@ std::string check_entry(const fs::path& out_dir, const nlohmann::json& entry) {
     const std::string name = entry.at("name").get<std::string>();
     // Only files of the folder: a damaged manifest must not send the check to /dev/zero.
     const fs::path relative = fs::path(name).lexically_normal();
-    if (name.empty() || relative.is_absolute() || *relative.begin() == "..") return "its manifest names \"" + name + "\"";
+    if (name.empty() || relative.is_absolute() || *relative.begin() == "..")
+        return "its manifest names \"" + name + "\"";
     const fs::path path = out_dir / relative;
     std::error_code error;
     if (!fs::is_regular_file(path, error)) return name + " is missing";
@@ -41,8 +42,10 @@ std::string check_entry(const fs::path& out_dir, const nlohmann::json& entry) {
     // A count too large for an integer is read as a float, which must not be converted (a fuzzing finding).
     const nlohmann::json& written = entry.at("bytes");
     if (!written.is_number_unsigned()) return "its manifest gives " + name + " no byte count";
-    if (bytes != written.get<uintmax_t>()) return fmt::format("{} has {} bytes, {} were written", name, bytes, written.get<uintmax_t>());
-    if (file_checksum(path) != entry.at("checksum").get<std::string>()) return name + " has changed since it was written";
+    if (bytes != written.get<uintmax_t>())
+        return fmt::format("{} has {} bytes, {} were written", name, bytes, written.get<uintmax_t>());
+    if (file_checksum(path) != entry.at("checksum").get<std::string>())
+        return name + " has changed since it was written";
     return "";
 }
 

@@ -2,8 +2,8 @@
 #include "steadylight/run/frame_manifest.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <fmt/format.h>
 
@@ -23,9 +23,10 @@ class FrameManifest : public ::testing::Test {
 protected:
     void SetUp() override {
         // One folder per test and process: ctest runs tests in parallel, maybe from several checkouts.
-        m_dir = (fs::temp_directory_path() / fmt::format("steadylight_manifest_{}_{}",
-                                                         ::testing::UnitTest::GetInstance()->current_test_info()->name(),
-                                                         getpid())).string();
+        m_dir = (fs::temp_directory_path() /
+                 fmt::format("steadylight_manifest_{}_{}",
+                             ::testing::UnitTest::GetInstance()->current_test_info()->name(), getpid()))
+                    .string();
         fs::remove_all(m_dir);
         fs::create_directories(m_dir);
         const WrittenFiles written;

@@ -24,12 +24,12 @@ FrameSpan parse_frame_span(const std::string& part) {
     static const std::regex pattern(R"((\d{1,9})(?:\s*-\s*(\d{1,9})(?:\s*:\s*(\d{1,9}))?)?)");
     const std::string text = trimmed(part);
     std::smatch match;
-    if (!std::regex_match(text, match, pattern))
-        throw InputError("--frames", fmt::format("\"{}\": {}", text, syntax));
+    if (!std::regex_match(text, match, pattern)) throw InputError("--frames", fmt::format("\"{}\": {}", text, syntax));
     FrameSpan span{std::stoi(match[1]), 0, 1, text};
     span.last = match[2].matched ? std::stoi(match[2]) : span.first;
     if (match[3].matched) span.step = std::stoi(match[3]);
-    if (span.last < span.first) throw InputError("--frames", fmt::format("\"{}\": the range ends before it starts", text));
+    if (span.last < span.first)
+        throw InputError("--frames", fmt::format("\"{}\": the range ends before it starts", text));
     if (span.step < 1) throw InputError("--frames", fmt::format("\"{}\": the step must be at least 1", text));
     return span;
 }
@@ -56,8 +56,8 @@ std::vector<int> select_frames(const FrameSelection& selection, int frame_count)
     std::vector<int> frames;
     for (const FrameSpan& span : selection.spans) {
         if (span.last >= frame_count)
-            throw InputError("--frames", fmt::format("frame {} is past the scene's last frame {} (in \"{}\")", span.last,
-                                                     frame_count - 1, span.text));
+            throw InputError("--frames", fmt::format("frame {} is past the scene's last frame {} (in \"{}\")",
+                                                     span.last, frame_count - 1, span.text));
         for (long frame = span.first; frame <= span.last; frame += span.step) frames.push_back(int(frame));
     }
     std::sort(frames.begin(), frames.end());

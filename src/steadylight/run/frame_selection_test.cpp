@@ -18,9 +18,7 @@ std::string error_of(const std::string& text) {
     return testing::input_error_of([&] { frames_of(text); });
 }
 
-TEST(FrameSelection, NoSpansSelectsEveryFrame) {
-    EXPECT_EQ(select_frames({}, 4), (std::vector<int>{0, 1, 2, 3}));
-}
+TEST(FrameSelection, NoSpansSelectsEveryFrame) { EXPECT_EQ(select_frames({}, 4), (std::vector<int>{0, 1, 2, 3})); }
 
 TEST(FrameSelection, SingleFrameRangeAndStep) {
     EXPECT_EQ(frames_of("7"), (std::vector<int>{7}));

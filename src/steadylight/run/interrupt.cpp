@@ -16,7 +16,8 @@ extern "C" void on_interrupt_signal(int) {
     // Only async-signal-safe calls here (POSIX signal-safety(7)): an atomic store and _exit.
     if (interrupt_requested()) _exit(130);
     request_interrupt();
-    constexpr char message[] = "\nsteadylight: stopping; the frame in progress is dropped (Ctrl-C again to quit at once)\n";
+    constexpr char message[] =
+        "\nsteadylight: stopping; the frame in progress is dropped (Ctrl-C again to quit at once)\n";
     [[maybe_unused]] const ssize_t ignored = write(STDERR_FILENO, message, sizeof(message) - 1);
 }
 

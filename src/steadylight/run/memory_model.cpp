@@ -56,10 +56,11 @@ MemoryEstimate estimate_memory(const RenderSettings& settings, const Scene& scen
     need.scene = bytes_per_triangle * double(triangle_count(scene.desc()));
     const Camera& camera = scene.evaluate(0).camera;
     const bool path = settings.method == Method::path;
-    need.pixels = double(camera.width) * double(camera.height) * (path ? bytes_per_pixel_path : bytes_per_pixel_photon_methods);
+    need.pixels =
+        double(camera.width) * double(camera.height) * (path ? bytes_per_pixel_path : bytes_per_pixel_photon_methods);
     if (!path)
-        need.photons = bytes_per_photon_path *
-                       (double(settings.photon.photons.global_photons) + double(settings.photon.photons.caustic_photons));
+        need.photons = bytes_per_photon_path * (double(settings.photon.photons.global_photons) +
+                                                double(settings.photon.photons.caustic_photons));
     return need;
 }
 
@@ -72,19 +73,21 @@ MemoryLimit memory_available() {
     lower(limit_from_file("/sys/fs/cgroup/memory/memory.limit_in_bytes"), "the cgroup's memory.limit_in_bytes");
     lower(megabytes_from_env("SLURM_MEM_PER_NODE"), "Slurm's SLURM_MEM_PER_NODE");
     if (const char* cpus = std::getenv("SLURM_CPUS_ON_NODE"))
-        lower(megabytes_from_env("SLURM_MEM_PER_CPU", size_t(std::max(1, std::atoi(cpus)))), "Slurm's SLURM_MEM_PER_CPU");
+        lower(megabytes_from_env("SLURM_MEM_PER_CPU", size_t(std::max(1, std::atoi(cpus)))),
+              "Slurm's SLURM_MEM_PER_CPU");
     return limit;
 }
 
 void check_memory(const MemoryEstimate& need, const MemoryLimit& limit) {
     if (need.total() <= double(limit.bytes)) return;
     const char* option = need.pixels >= need.photons && need.pixels >= need.scene ? "--size"
-                         : need.photons >= need.scene                          ? "--photons and --caustic-photons"
-                                                                               : "the scene's triangles";
-    throw InputError("memory", fmt::format("this render needs about {} (image {}, photons {}, scene {}), more than the {} "
-                                           "available ({}); lower {} (README \"Memory\")",
-                                           gigabytes(need.total()), gigabytes(need.pixels), gigabytes(need.photons),
-                                           gigabytes(need.scene), gigabytes(double(limit.bytes)), limit.source, option));
+                         : need.photons >= need.scene                             ? "--photons and --caustic-photons"
+                                                                                  : "the scene's triangles";
+    throw InputError("memory",
+                     fmt::format("this render needs about {} (image {}, photons {}, scene {}), more than the {} "
+                                 "available ({}); lower {} (README \"Memory\")",
+                                 gigabytes(need.total()), gigabytes(need.pixels), gigabytes(need.photons),
+                                 gigabytes(need.scene), gigabytes(double(limit.bytes)), limit.source, option));
 }
 
 }  // namespace steadylight

@@ -45,7 +45,8 @@ TEST(MemoryModel, TooMuchIsAnErrorNamingWhatToLower) {
     EXPECT_NE(image.find("needs about 67.2 GB"), std::string::npos) << image;
     EXPECT_NE(image.find("more than the 24.0 GB available (a test limit)"), std::string::npos) << image;
     EXPECT_NE(image.find("lower --size"), std::string::npos) << image;
-    EXPECT_NE(error_of({.scene = 1e6, .pixels = 1e7, .photons = 30e9}, size_t(24e9)).find("lower --photons and --caustic-photons"),
+    EXPECT_NE(error_of({.scene = 1e6, .pixels = 1e7, .photons = 30e9}, size_t(24e9))
+                  .find("lower --photons and --caustic-photons"),
               std::string::npos);
     EXPECT_NE(error_of({.scene = 40e9, .pixels = 1e7, .photons = 1e8}, size_t(24e9)).find("the scene's triangles"),
               std::string::npos);

@@ -21,7 +21,9 @@
 namespace steadylight {
 namespace {
 
-std::string hex_checksum(const std::string& bytes) { return fmt::format("{:016x}", checksum64(bytes.data(), bytes.size())); }
+std::string hex_checksum(const std::string& bytes) {
+    return fmt::format("{:016x}", checksum64(bytes.data(), bytes.size()));
+}
 
 std::string file_checksum(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -87,17 +89,14 @@ nlohmann::json make_settings_json(const RenderSettings& settings, const RunInfo&
                              {"aov_pngs", settings.aov_pngs},
                              {"output", settings.output}};
     render.update(method_settings_json(settings));
-    return {{"steadylight_version", STEADYLIGHT_VERSION},
-            {"date", utc_now()},
-            {"scene_file", settings.scene_file},
-            {"frames", format_frame_list(run.frames)},
-            {"threads", run.threads},
-            {"cache_file", settings.cache_file},
-            {"video", settings.output.video_file},
-            {"render", render}};
+    return {{"steadylight_version", STEADYLIGHT_VERSION}, {"date", utc_now()},      {"scene_file", settings.scene_file},
+            {"frames", format_frame_list(run.frames)},    {"threads", run.threads}, {"cache_file", settings.cache_file},
+            {"video", settings.output.video_file},        {"render", render}};
 }
 
-std::string settings_key(const nlohmann::json& settings_json) { return hex_checksum(settings_json.at("render").dump()); }
+std::string settings_key(const nlohmann::json& settings_json) {
+    return hex_checksum(settings_json.at("render").dump());
+}
 
 std::string folder_lock_name(const std::string& out_dir) {
     return (std::filesystem::path(out_dir) / ".steadylight.lock").string();
@@ -119,9 +118,10 @@ void write_settings_file(const std::string& path, nlohmann::json settings_json, 
         }
         if (before.contains("render") && before["render"] != settings_json["render"]) {
             const std::string differences = format_of(before["render"]) != settings_format_version
-                                                ? fmt::format("settings file format {}, this steadylight writes "
-                                                              "format {}",
-                                                              format_of(before["render"]), settings_format_version)
+                                                ? fmt::format(
+                                                      "settings file format {}, this steadylight writes "
+                                                      "format {}",
+                                                      format_of(before["render"]), settings_format_version)
                                                 : describe_differences(before["render"], settings_json["render"]);
             if (!overwrite)
                 throw InputError(path, "the frames in this folder were rendered with other settings (" + differences +

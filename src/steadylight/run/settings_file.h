@@ -51,8 +51,8 @@ std::string folder_lock_name(const std::string& out_dir);
 std::string settings_file_name(const std::string& out_dir, const std::string& scene_name);
 
 /// Checks `settings_json` against the file at `path` from an earlier run, if there is one, and
-/// writes it there (atomically) with the frames of both, all under the folder's lock. Throws InputError when the "render"
-/// parts differ, unless `overwrite`.
+/// writes it there (atomically) with the frames of both, all under the folder's lock. Throws InputError when the
+/// "render" parts differ, unless `overwrite`.
 void write_settings_file(const std::string& path, nlohmann::json settings_json, bool overwrite);
 
 }  // namespace steadylight

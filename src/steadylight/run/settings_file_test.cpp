@@ -22,7 +22,8 @@ protected:
     void SetUp() override {
         // One folder per test and process: ctest runs tests in parallel, maybe from several checkouts.
         m_dir = fs::temp_directory_path() / fmt::format("steadylight_settings_{}_{}",
-                                                        ::testing::UnitTest::GetInstance()->current_test_info()->name(), getpid());
+                                                        ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                                                        getpid());
         fs::remove_all(m_dir);
         fs::create_directories(m_dir);
         m_settings.scene_file = (m_dir / "scene.json").string();

@@ -13,17 +13,16 @@ Rgb mix(Rgb a, Rgb b, float t) { return a * (1 - t) + b * t; }
 template <class T>
 T hermite(T p0, T m0, T p1, T m1, float t) {
     const float t2 = t * t, t3 = t2 * t;
-    return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 +
-           (t3 - t2) * m1;
+    return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * m1;
 }
 
 Quat hermite(Quat p0, Quat m0, Quat p1, Quat m1, float t) {
     // glTF: cubic-spline rotations are interpolated component-wise, then normalised.
-    const Vec3 xyz = hermite(Vec3{p0.x, p0.y, p0.z}, Vec3{m0.x, m0.y, m0.z},
-                             Vec3{p1.x, p1.y, p1.z}, Vec3{m1.x, m1.y, m1.z}, t);
+    const Vec3 xyz =
+        hermite(Vec3{p0.x, p0.y, p0.z}, Vec3{m0.x, m0.y, m0.z}, Vec3{p1.x, p1.y, p1.z}, Vec3{m1.x, m1.y, m1.z}, t);
     const float t2 = t * t, t3 = t2 * t;
-    const float w = (2 * t3 - 3 * t2 + 1) * p0.w + (t3 - 2 * t2 + t) * m0.w +
-                    (-2 * t3 + 3 * t2) * p1.w + (t3 - t2) * m1.w;
+    const float w =
+        (2 * t3 - 3 * t2 + 1) * p0.w + (t3 - 2 * t2 + t) * m0.w + (-2 * t3 + 3 * t2) * p1.w + (t3 - t2) * m1.w;
     return normalize(Quat{xyz.x, xyz.y, xyz.z, w});
 }
 
@@ -44,11 +43,12 @@ T Track<T>::evaluate(float time_s) const {
     const float dt = times[k + 1] - times[k];
     const float t = (time_s - times[k]) / dt;
     switch (interpolation) {
-        case Interpolation::step: return value(k);
-        case Interpolation::linear: return mix(value(k), value(k + 1), t);
+        case Interpolation::step:
+            return value(k);
+        case Interpolation::linear:
+            return mix(value(k), value(k + 1), t);
         case Interpolation::cubic_spline:
-            return hermite(value(k), scaled(values[3 * k + 2], dt), value(k + 1),
-                           scaled(values[3 * (k + 1)], dt), t);
+            return hermite(value(k), scaled(values[3 * k + 2], dt), value(k + 1), scaled(values[3 * (k + 1)], dt), t);
     }
     return value(k);
 }
@@ -60,8 +60,7 @@ bool Track<T>::is_constant() const {
     // A cubic spline stands still when all its values agree and all its tangents vanish.
     for (size_t i = 0; i < values.size(); ++i) {
         const bool is_tangent = i % 3 != 1;
-        if (is_tangent ? !(scaled(values[i], 0.0f) == values[i]) : !(values[i] == values[1]))
-            return false;
+        if (is_tangent ? !(scaled(values[i], 0.0f) == values[i]) : !(values[i] == values[1])) return false;
     }
     return true;
 }
@@ -79,8 +78,7 @@ Transform AnimatedTrs::evaluate(float time_s) const {
 
 bool AnimatedTrs::is_animated() const {
     return (translation_track && !translation_track->is_constant()) ||
-           (rotation_track && !rotation_track->is_constant()) ||
-           (scale_track && !scale_track->is_constant());
+           (rotation_track && !rotation_track->is_constant()) || (scale_track && !scale_track->is_constant());
 }
 
 float AnimatedTrs::duration_s() const {

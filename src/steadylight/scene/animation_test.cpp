@@ -38,8 +38,8 @@ TEST(Animation, ColourTrackStepsOrInterpolatesEachChannel) {
 
 TEST(Animation, CubicSplineFollowsHermiteBasis) {
     // Keys 0 -> 1 with zero tangents: the Hermite curve is smoothstep, 0.5 at the middle.
-    const auto t = track(Interpolation::cubic_spline, {0, 2},
-                         {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 0, 0}, {0, 0, 0}});
+    const auto t =
+        track(Interpolation::cubic_spline, {0, 2}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 0, 0}, {0, 0, 0}});
     EXPECT_NEAR(t.evaluate(1).x, 0.5f, 1e-6f);
     EXPECT_NEAR(t.evaluate(0.5f).x, 0.15625f, 1e-6f);  // 3(1/4)^2 - 2(1/4)^3
 }

@@ -9,7 +9,6 @@
 namespace steadylight::gltf {
 namespace {
 
-
 /// An accessor checked to lie inside its buffer: element i starts at `data + i * stride`.
 struct AccessorView {
     const unsigned char* data = nullptr;
@@ -20,9 +19,7 @@ struct AccessorView {
     int type = 0;
     bool normalized = false;
 
-    const unsigned char* at(size_t i, int c) const {
-        return data + i * stride + size_t(c) * component_size;
-    }
+    const unsigned char* at(size_t i, int c) const { return data + i * stride + size_t(c) * component_size; }
 };
 
 template <class T>
@@ -40,10 +37,14 @@ float read_component(const AccessorView& view, size_t i, int c) {
         return view.normalized ? std::max(value / max_value, -1.0f) : value;
     };
     switch (view.component_type) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load_unaligned<float>(p);
-        case TINYGLTF_COMPONENT_TYPE_BYTE: return scale(load_unaligned<int8_t>(p), 127);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return scale(load_unaligned<uint8_t>(p), 255);
-        case TINYGLTF_COMPONENT_TYPE_SHORT: return scale(load_unaligned<int16_t>(p), 32767);
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return load_unaligned<float>(p);
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            return scale(load_unaligned<int8_t>(p), 127);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return scale(load_unaligned<uint8_t>(p), 255);
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            return scale(load_unaligned<int16_t>(p), 32767);
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
             return scale(load_unaligned<uint16_t>(p), 65535);
     }
@@ -53,9 +54,12 @@ float read_component(const AccessorView& view, size_t i, int c) {
 uint32_t read_unsigned(const AccessorView& view, size_t i) {
     const unsigned char* p = view.at(i, 0);
     switch (view.component_type) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load_unaligned<uint8_t>(p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load_unaligned<uint16_t>(p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load_unaligned<uint32_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return load_unaligned<uint8_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return load_unaligned<uint16_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return load_unaligned<uint32_t>(p);
     }
     return 0;
 }
@@ -69,16 +73,14 @@ bool fits(size_t offset, size_t count, size_t stride, size_t element_size, size_
 }
 
 /// The bytes of the accessor's bufferView, checked to lie inside their buffer.
-std::span<const unsigned char> buffer_view_bytes(const GltfFile& file,
-                                                 const tinygltf::Accessor& accessor,
+std::span<const unsigned char> buffer_view_bytes(const GltfFile& file, const tinygltf::Accessor& accessor,
                                                  const std::string& where) {
     const tinygltf::Model& model = file.model;
     if (accessor.bufferView < 0 || size_t(accessor.bufferView) >= model.bufferViews.size())
         file.fail(where, "accessor has no valid bufferView");
     const tinygltf::BufferView& view = model.bufferViews[size_t(accessor.bufferView)];
     const std::string name = "bufferView " + std::to_string(accessor.bufferView);
-    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-        file.fail(where, name + " has no valid buffer");
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size()) file.fail(where, name + " has no valid buffer");
     const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
     if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
         file.fail(where, name + " reaches past the end of its buffer");
@@ -87,8 +89,7 @@ std::span<const unsigned char> buffer_view_bytes(const GltfFile& file,
 
 AccessorView view_accessor(const GltfFile& file, int index, const std::string& user) {
     const std::string where = user + ", accessor " + std::to_string(index);
-    if (index < 0 || size_t(index) >= file.model.accessors.size())
-        file.fail(where, "accessor index out of range");
+    if (index < 0 || size_t(index) >= file.model.accessors.size()) file.fail(where, "accessor index out of range");
     const tinygltf::Accessor& accessor = file.model.accessors[size_t(index)];
     if (accessor.sparse.isSparse) file.fail(where, "sparse accessors are not supported");
     const std::span<const unsigned char> bytes = buffer_view_bytes(file, accessor, where);
@@ -115,8 +116,8 @@ AccessorView view_accessor(const GltfFile& file, int index, const std::string& u
 AccessorView view_typed(const GltfFile& file, int index, const std::string& user, int type,
                         std::initializer_list<int> component_types, const std::string& expected) {
     const AccessorView view = view_accessor(file, index, user);
-    const bool component_ok = std::find(component_types.begin(), component_types.end(),
-                                        view.component_type) != component_types.end();
+    const bool component_ok =
+        std::find(component_types.begin(), component_types.end(), view.component_type) != component_types.end();
     if (view.type != type || !component_ok)
         file.fail(user, "accessor " + std::to_string(index) + " must be " + expected);
     return view;
@@ -125,46 +126,42 @@ AccessorView view_typed(const GltfFile& file, int index, const std::string& user
 }  // namespace
 
 std::vector<float> read_floats(const GltfFile& file, int index, const std::string& user) {
-    const AccessorView view = view_typed(file, index, user, TINYGLTF_TYPE_SCALAR,
-                                         {TINYGLTF_COMPONENT_TYPE_FLOAT}, "float SCALAR");
+    const AccessorView view =
+        view_typed(file, index, user, TINYGLTF_TYPE_SCALAR, {TINYGLTF_COMPONENT_TYPE_FLOAT}, "float SCALAR");
     std::vector<float> values(view.count);
     for (size_t i = 0; i < view.count; ++i) values[i] = read_component(view, i, 0);
     return values;
 }
 
 std::vector<Vec3> read_vec3s(const GltfFile& file, int index, const std::string& user) {
-    const AccessorView view = view_typed(file, index, user, TINYGLTF_TYPE_VEC3,
-                                         {TINYGLTF_COMPONENT_TYPE_FLOAT}, "float VEC3");
+    const AccessorView view =
+        view_typed(file, index, user, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, "float VEC3");
     std::vector<Vec3> values(view.count);
     for (size_t i = 0; i < view.count; ++i)
-        values[i] = {read_component(view, i, 0), read_component(view, i, 1),
-                     read_component(view, i, 2)};
+        values[i] = {read_component(view, i, 0), read_component(view, i, 1), read_component(view, i, 2)};
     return values;
 }
 
 std::vector<Quat> read_quats(const GltfFile& file, int index, const std::string& user) {
     const AccessorView view =
         view_typed(file, index, user, TINYGLTF_TYPE_VEC4,
-                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
-                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                    TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
                    "VEC4 of floats or normalised integers");
     if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !view.normalized)
-        file.fail(user,
-                  "accessor " + std::to_string(index) + ": integer rotations must be normalized");
+        file.fail(user, "accessor " + std::to_string(index) + ": integer rotations must be normalized");
     std::vector<Quat> values(view.count);
     for (size_t i = 0; i < view.count; ++i)
-        values[i] = {read_component(view, i, 0), read_component(view, i, 1),
-                     read_component(view, i, 2), read_component(view, i, 3)};
+        values[i] = {read_component(view, i, 0), read_component(view, i, 1), read_component(view, i, 2),
+                     read_component(view, i, 3)};
     return values;
 }
 
 std::vector<Vec2> read_texcoords(const GltfFile& file, int index, const std::string& user) {
-    const AccessorView view =
-        view_typed(file, index, user, TINYGLTF_TYPE_VEC2,
-                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                   "VEC2 of floats or normalised unsigned bytes or shorts");
+    const AccessorView view = view_typed(
+        file, index, user, TINYGLTF_TYPE_VEC2,
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+        "VEC2 of floats or normalised unsigned bytes or shorts");
     if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !view.normalized)
         file.fail(user, "accessor " + std::to_string(index) + ": integer texture coordinates must be normalized");
     std::vector<Vec2> values(view.count);
@@ -179,7 +176,8 @@ std::vector<Rgba> read_vec4s(const GltfFile& file, int index, const std::string&
                               (view.normalized && (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                                    view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
     if (!type_ok || !component_ok)
-        file.fail(user, "accessor " + std::to_string(index) + " must be VEC3 or VEC4 of floats or normalised unsigned integers");
+        file.fail(user, "accessor " + std::to_string(index) +
+                            " must be VEC3 or VEC4 of floats or normalised unsigned integers");
     const int components = view.type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
     std::vector<Rgba> values(view.count);
     for (size_t i = 0; i < view.count; ++i)
@@ -187,19 +185,17 @@ std::vector<Rgba> read_vec4s(const GltfFile& file, int index, const std::string&
     return values;
 }
 
-std::vector<int> read_indices(const GltfFile& file, int index, const std::string& user,
-                              size_t vertex_count) {
-    const AccessorView view =
-        view_typed(file, index, user, TINYGLTF_TYPE_SCALAR,
-                   {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-                   "unsigned byte, short or int SCALAR");
+std::vector<int> read_indices(const GltfFile& file, int index, const std::string& user, size_t vertex_count) {
+    const AccessorView view = view_typed(file, index, user, TINYGLTF_TYPE_SCALAR,
+                                         {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                                         "unsigned byte, short or int SCALAR");
     std::vector<int> indices(view.count);
     for (size_t i = 0; i < view.count; ++i) {
         const uint32_t vertex = read_unsigned(view, i);
         if (vertex >= vertex_count)
-            file.fail(user, "index " + std::to_string(vertex) + " out of range (" +
-                                std::to_string(vertex_count) + " vertices)");
+            file.fail(user, "index " + std::to_string(vertex) + " out of range (" + std::to_string(vertex_count) +
+                                " vertices)");
         indices[i] = int(vertex);
     }
     return indices;

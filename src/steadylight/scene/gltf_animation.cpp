@@ -22,21 +22,17 @@ AnimatedTrs decompose(const std::vector<double>& m) {
     AnimatedTrs trs;
     trs.translation = {float(m[12]), float(m[13]), float(m[14])};
     Vec3 columns[3];
-    for (size_t c = 0; c < 3; ++c)
-        columns[c] = {float(m[4 * c]), float(m[4 * c + 1]), float(m[4 * c + 2])};
+    for (size_t c = 0; c < 3; ++c) columns[c] = {float(m[4 * c]), float(m[4 * c + 1]), float(m[4 * c + 2])};
     trs.scale = {length(columns[0]), length(columns[1]), length(columns[2])};
     // A mirroring matrix is a rotation times a negative scale; put the sign on x.
     if (dot(cross(columns[0], columns[1]), columns[2]) < 0) trs.scale.x = -trs.scale.x;
     // A zero scale flattens the basis beyond recovering a rotation; the object is invisible.
     if (trs.scale.x == 0 || trs.scale.y == 0 || trs.scale.z == 0) return trs;
-    trs.rotation = Quat::from_basis(columns[0] / trs.scale.x, columns[1] / trs.scale.y,
-                                    columns[2] / trs.scale.z);
+    trs.rotation = Quat::from_basis(columns[0] / trs.scale.x, columns[1] / trs.scale.y, columns[2] / trs.scale.z);
     return trs;
 }
 
-
-Interpolation parse_interpolation(const GltfFile& file, const std::string& name,
-                                  const std::string& where) {
+Interpolation parse_interpolation(const GltfFile& file, const std::string& name, const std::string& where) {
     if (name == "LINEAR") return Interpolation::linear;
     if (name == "STEP") return Interpolation::step;
     if (name == "CUBICSPLINE") return Interpolation::cubic_spline;
@@ -48,14 +44,13 @@ std::vector<float> read_key_times(const GltfFile& file, int accessor, const std:
     if (times.empty()) file.fail(where, "animation sampler has no keys");
     for (size_t i = 1; i < times.size(); ++i)
         if (!(times[i] > times[i - 1]))
-            file.fail(where,
-                      "input times must be strictly increasing (key " + std::to_string(i) + ")");
+            file.fail(where, "input times must be strictly increasing (key " + std::to_string(i) + ")");
     return times;
 }
 
 template <class T>
-Track<T> make_track(const GltfFile& file, const tinygltf::AnimationSampler& sampler,
-                    std::vector<T> values, const std::string& where) {
+Track<T> make_track(const GltfFile& file, const tinygltf::AnimationSampler& sampler, std::vector<T> values,
+                    const std::string& where) {
     Track<T> track;
     track.interpolation = parse_interpolation(file, sampler.interpolation, where);
     track.times = read_key_times(file, sampler.input, where);
@@ -70,8 +65,7 @@ Track<T> make_track(const GltfFile& file, const tinygltf::AnimationSampler& samp
 
 Track<Quat> make_rotation_track(const GltfFile& file, const tinygltf::AnimationSampler& sampler,
                                 const std::string& where) {
-    Track<Quat> track =
-        make_track(file, sampler, read_quats(file, sampler.output, where + ", output"), where);
+    Track<Quat> track = make_track(file, sampler, read_quats(file, sampler.output, where + ", output"), where);
     // Normalise the values but not the tangents of a cubic spline, which are derivatives.
     const bool cubic = track.interpolation == Interpolation::cubic_spline;
     for (size_t i = 0; i < track.values.size(); ++i)
@@ -80,11 +74,10 @@ Track<Quat> make_rotation_track(const GltfFile& file, const tinygltf::AnimationS
 }
 
 /// Points the channel's sampler at the node path it targets; false for paths it cannot animate.
-bool apply_channel(const GltfFile& file, const tinygltf::AnimationSampler& sampler,
-                   const std::string& path, AnimatedTrs& target, const std::string& where) {
+bool apply_channel(const GltfFile& file, const tinygltf::AnimationSampler& sampler, const std::string& path,
+                   AnimatedTrs& target, const std::string& where) {
     const auto vec3_track = [&] {
-        return make_track(file, sampler, read_vec3s(file, sampler.output, where + ", output"),
-                          where);
+        return make_track(file, sampler, read_vec3s(file, sampler.output, where + ", output"), where);
     };
     if (path == "translation") {
         target.translation_track = vec3_track();
@@ -102,13 +95,11 @@ bool apply_channel(const GltfFile& file, const tinygltf::AnimationSampler& sampl
 }
 
 /// The end of the animation's longest sampler, in seconds.
-float animation_duration_s(const GltfFile& file, const tinygltf::Animation& animation,
-                           const std::string& where) {
+float animation_duration_s(const GltfFile& file, const tinygltf::Animation& animation, const std::string& where) {
     float duration_s = 0;
     for (size_t s = 0; s < animation.samplers.size(); ++s) {
         const std::string sampler_where = where + ", sampler " + std::to_string(s);
-        duration_s = std::max(
-            duration_s, read_key_times(file, animation.samplers[s].input, sampler_where).back());
+        duration_s = std::max(duration_s, read_key_times(file, animation.samplers[s].input, sampler_where).back());
     }
     return duration_s;
 }
@@ -147,8 +138,7 @@ std::vector<std::vector<float>> sampled_key_times(const GltfFile& file) {
         for (size_t s = 0; s < animation.samplers.size(); ++s) {
             const tinygltf::AnimationSampler& sampler = animation.samplers[s];
             if (sampler.interpolation == "CUBICSPLINE") continue;
-            const std::string where =
-                describe("animation", a, animation.name) + ", sampler " + std::to_string(s);
+            const std::string where = describe("animation", a, animation.name) + ", sampler " + std::to_string(s);
             std::vector<float> times = read_floats(file, sampler.input, where + ", input");
             if (times.size() >= 3) sampled.push_back(std::move(times));
         }
@@ -173,8 +163,7 @@ std::optional<float> sampled_frame_rate(const GltfFile& file) {
     for (const std::vector<float>& times : sampled_key_times(file)) {
         const std::optional<double> dt = even_key_spacing_s(times);
         if (!dt) return std::nullopt;
-        if (spacing_s && std::abs(*dt - *spacing_s) > spacing_tolerance_rel * *spacing_s)
-            return std::nullopt;
+        if (spacing_s && std::abs(*dt - *spacing_s) > spacing_tolerance_rel * *spacing_s) return std::nullopt;
         if (!spacing_s || times.back() - times.front() > longest_s) {
             spacing_s = dt;
             longest_s = times.back() - times.front();
@@ -191,8 +180,8 @@ AnimatedTrs node_placement(const tinygltf::Node& node) {
     AnimatedTrs trs;
     if (node.translation.size() == 3) trs.translation = to_vec3(node.translation);
     if (node.rotation.size() == 4)
-        trs.rotation = normalized_or_identity({float(node.rotation[0]), float(node.rotation[1]),
-                                               float(node.rotation[2]), float(node.rotation[3])});
+        trs.rotation = normalized_or_identity(
+            {float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]), float(node.rotation[3])});
     if (node.scale.size() == 3) trs.scale = to_vec3(node.scale);
     return trs;
 }
@@ -211,18 +200,16 @@ float apply_animations(const GltfFile& file, std::vector<AnimatedTrs>& placement
             const std::string channel_where = where + ", channel " + std::to_string(c);
             // A channel without a node targets something an extension defines; none are supported.
             if (channel.target_node < 0) continue;
-            if (size_t(channel.target_node) >= placements.size())
-                file.fail(channel_where, "target node out of range");
+            if (size_t(channel.target_node) >= placements.size()) file.fail(channel_where, "target node out of range");
             if (channel.sampler < 0 || size_t(channel.sampler) >= animation.samplers.size())
                 file.fail(channel_where, "sampler index out of range");
             const tinygltf::AnimationSampler& sampler = animation.samplers[size_t(channel.sampler)];
-            if (!apply_channel(file, sampler, channel.target_path,
-                               placements[size_t(channel.target_node)], channel_where))
+            if (!apply_channel(file, sampler, channel.target_path, placements[size_t(channel.target_node)],
+                               channel_where))
                 continue;
             if (!animated.insert({channel.target_node, channel.target_path}).second)
-                spdlog::warn(
-                    "{}: {}: node {} {} is animated by several channels; the last one wins",
-                    file.path, channel_where, channel.target_node, channel.target_path);
+                spdlog::warn("{}: {}: node {} {} is animated by several channels; the last one wins", file.path,
+                             channel_where, channel.target_node, channel.target_path);
         }
     }
     return duration_s;

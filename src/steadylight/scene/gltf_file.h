@@ -39,8 +39,10 @@ struct GltfFile {
     /// used by a thousand materials is reported once.
     void warn_once(const std::string& what, const std::string& element) const {
         if (!warned.insert(what).second) return;
-        if (element.empty()) spdlog::warn("{}: {}", path, what);
-        else spdlog::warn("{}: {} ({})", path, what, element);
+        if (element.empty())
+            spdlog::warn("{}: {}", path, what);
+        else
+            spdlog::warn("{}: {} ({})", path, what, element);
     }
 };
 

@@ -41,8 +41,7 @@ constexpr double lumens_per_watt = 683;
 
 std::string lowercase_extension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
 
@@ -65,8 +64,8 @@ bool decode_gltf_image(tinygltf::Image* image, const int index, std::string* err
         const size_t buffer_size = loading.buffers.at(size_t(view.buffer)).data.size();
         if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
             if (err)
-                *err += fmt::format("image {} \"{}\": bufferView {} runs past the end of buffer {}\n", index, image->name,
-                                    image->bufferView, view.buffer);
+                *err += fmt::format("image {} \"{}\": bufferView {} runs past the end of buffer {}\n", index,
+                                    image->name, image->bufferView, view.buffer);
             return false;
         }
     }
@@ -87,8 +86,7 @@ bool decode_gltf_image(tinygltf::Image* image, const int index, std::string* err
 tinygltf::Model load_model(const std::string& path) {
     const std::string ext = lowercase_extension(path);
     if (ext != ".gltf" && ext != ".glb")
-        throw InputError(path,
-                         "unknown glTF file extension \"" + ext + "\" (expected .gltf or .glb)");
+        throw InputError(path, "unknown glTF file extension \"" + ext + "\" (expected .gltf or .glb)");
     // The error_code form: a name too long for the file system is "not found", not an exception
     // from the standard library (a fuzzing finding).
     std::error_code error;
@@ -104,7 +102,6 @@ tinygltf::Model load_model(const std::string& path) {
     return model;
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // Meshes
 
@@ -115,8 +112,10 @@ std::vector<int> triangulate(const std::vector<int>& v, int mode) {
     for (size_t i = 0; i + 2 < v.size(); ++i) {
         if (mode == TINYGLTF_MODE_TRIANGLE_FAN)
             triangles.insert(triangles.end(), {v[i + 1], v[i + 2], v[0]});
-        else if (i % 2 == 0) triangles.insert(triangles.end(), {v[i], v[i + 1], v[i + 2]});
-        else triangles.insert(triangles.end(), {v[i], v[i + 2], v[i + 1]});
+        else if (i % 2 == 0)
+            triangles.insert(triangles.end(), {v[i], v[i + 1], v[i + 2]});
+        else
+            triangles.insert(triangles.end(), {v[i], v[i + 2], v[i + 1]});
     }
     return triangles;
 }
@@ -143,29 +142,26 @@ void read_surface_attributes(const GltfFile& file, const tinygltf::Primitive& pr
     mesh.colors = read_vertex_attribute(file, primitive, "COLOR_0", where, n, [&](int index, const std::string& user) {
         return read_vec4s(file, index, user, 1);
     });
-    mesh.tangents = read_vertex_attribute(file, primitive, "TANGENT", where, n, [&](int index, const std::string& user) {
-        return read_vec4s(file, index, user, 1);
-    });
+    mesh.tangents =
+        read_vertex_attribute(file, primitive, "TANGENT", where, n,
+                              [&](int index, const std::string& user) { return read_vec4s(file, index, user, 1); });
 }
 
-void warn_ignored_attributes(const GltfFile& file, const tinygltf::Primitive& primitive,
-                             const std::string& where) {
+void warn_ignored_attributes(const GltfFile& file, const tinygltf::Primitive& primitive, const std::string& where) {
     if (!primitive.targets.empty()) file.warn_once("morph targets are ignored", where);
 }
 
 /// The primitive's vertices in drawing order: its indices, or 0, 1, 2, ... without them.
 std::vector<int> primitive_vertices(const GltfFile& file, const tinygltf::Primitive& primitive,
                                     const std::string& where, size_t vertex_count) {
-    if (primitive.indices >= 0)
-        return read_indices(file, primitive.indices, where + ", indices", vertex_count);
+    if (primitive.indices >= 0) return read_indices(file, primitive.indices, where + ", indices", vertex_count);
     std::vector<int> vertices(vertex_count);
     std::iota(vertices.begin(), vertices.end(), 0);
     return vertices;
 }
 
 /// The primitive's triangles, or nothing for points, lines and primitives without positions.
-std::optional<TriangleMesh> read_primitive(const GltfFile& file,
-                                           const tinygltf::Primitive& primitive,
+std::optional<TriangleMesh> read_primitive(const GltfFile& file, const tinygltf::Primitive& primitive,
                                            const std::string& where) {
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
     if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -180,23 +176,18 @@ std::optional<TriangleMesh> read_primitive(const GltfFile& file,
     warn_ignored_attributes(file, primitive, where);
     TriangleMesh mesh;
     mesh.positions = read_vec3s(file, position->second, where + ", POSITION");
-    if (const auto normal = primitive.attributes.find("NORMAL");
-        normal != primitive.attributes.end()) {
+    if (const auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
         mesh.normals = read_vec3s(file, normal->second, where + ", NORMAL");
-        if (mesh.normals.size() != mesh.positions.size())
-            file.fail(where, "NORMAL and POSITION counts differ");
+        if (mesh.normals.size() != mesh.positions.size()) file.fail(where, "NORMAL and POSITION counts differ");
     }
     read_surface_attributes(file, primitive, where, mesh);
-    mesh.indices =
-        triangulate(primitive_vertices(file, primitive, where, mesh.positions.size()), mode);
+    mesh.indices = triangulate(primitive_vertices(file, primitive, where, mesh.positions.size()), mode);
     if (mesh.indices.size() % 3 != 0)
-        file.fail(where, "triangle vertex count " + std::to_string(mesh.indices.size()) +
-                             " is not a multiple of 3");
+        file.fail(where, "triangle vertex count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
     return mesh;
 }
 
-std::string object_name(const tinygltf::Node& node, const tinygltf::Mesh& mesh, int node_index,
-                        size_t primitive) {
+std::string object_name(const tinygltf::Node& node, const tinygltf::Mesh& mesh, int node_index, size_t primitive) {
     std::string name = !node.name.empty()   ? node.name
                        : !mesh.name.empty() ? mesh.name
                                             : "node " + std::to_string(node_index);
@@ -222,8 +213,7 @@ std::vector<int> root_nodes(const GltfFile& file) {
             if (!is_child[i]) roots.push_back(int(i));
         return roots;
     }
-    const bool has_default =
-        model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size();
+    const bool has_default = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size();
     const size_t scene = has_default ? size_t(model.defaultScene) : 0;
     if (model.scenes.size() > 1)
         file.warn_once("only the default scene is loaded; other scenes are ignored",
@@ -237,7 +227,8 @@ bool has_light(const GltfFile& file, const tinygltf::Node& node, const std::stri
     for (const auto& [name, value] : node.extensions) {
         if (name != "KHR_lights_punctual")
             file.warn_once("node extension " + name + " is ignored", where);
-        else light = value.IsObject();
+        else
+            light = value.IsObject();
     }
     return light;
 }
@@ -246,19 +237,15 @@ bool has_light(const GltfFile& file, const tinygltf::Node& node, const std::stri
 /// primitives, camera and light into SceneDesc entries that share the node's placement chain.
 class SceneWalker {
 public:
-    SceneWalker(const GltfFile& file, const std::vector<AnimatedTrs>& placements, SceneDesc& desc,
-                bool& has_camera)
+    SceneWalker(const GltfFile& file, const std::vector<AnimatedTrs>& placements, SceneDesc& desc, bool& has_camera)
         : m_file(file), m_placements(placements), m_desc(desc), m_has_camera(has_camera) {}
 
     void visit(int node_index, std::vector<AnimatedTrs>& chain);
 
 private:
-    void add_mesh(const tinygltf::Node& node, int node_index,
-                  const std::vector<AnimatedTrs>& chain);
-    void add_camera(const tinygltf::Node& node, const std::vector<AnimatedTrs>& chain,
-                    const std::string& where);
-    void add_light(const tinygltf::Node& node, const std::vector<AnimatedTrs>& chain,
-                   const std::string& where);
+    void add_mesh(const tinygltf::Node& node, int node_index, const std::vector<AnimatedTrs>& chain);
+    void add_camera(const tinygltf::Node& node, const std::vector<AnimatedTrs>& chain, const std::string& where);
+    void add_light(const tinygltf::Node& node, const std::vector<AnimatedTrs>& chain, const std::string& where);
     const ImportedMaterial& material(int gltf_index);
 
     const GltfFile& m_file;
@@ -276,8 +263,7 @@ void SceneWalker::visit(int node_index, std::vector<AnimatedTrs>& chain) {
     const std::string where = describe("node", size_t(node_index), node.name);
     if (chain.size() >= model.nodes.size()) m_file.fail(where, "the node hierarchy has a cycle");
     chain.push_back(m_placements[size_t(node_index)]);
-    if (node.skin >= 0)
-        m_file.warn_once("skins are ignored; skinned meshes keep their node placement", where);
+    if (node.skin >= 0) m_file.warn_once("skins are ignored; skinned meshes keep their node placement", where);
     if (node.mesh >= 0) add_mesh(node, node_index, chain);
     if (node.camera >= 0) add_camera(node, chain, where);
     if (has_light(m_file, node, where)) add_light(node, chain, where);
@@ -285,15 +271,13 @@ void SceneWalker::visit(int node_index, std::vector<AnimatedTrs>& chain) {
     chain.pop_back();
 }
 
-void SceneWalker::add_mesh(const tinygltf::Node& node, int node_index,
-                           const std::vector<AnimatedTrs>& chain) {
+void SceneWalker::add_mesh(const tinygltf::Node& node, int node_index, const std::vector<AnimatedTrs>& chain) {
     if (size_t(node.mesh) >= m_file.model.meshes.size())
         m_file.fail(describe("node", size_t(node_index), node.name), "mesh index out of range");
     const tinygltf::Mesh& mesh = m_file.model.meshes[size_t(node.mesh)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         const tinygltf::Primitive& primitive = mesh.primitives[p];
-        const std::string where =
-            describe("mesh", size_t(node.mesh), mesh.name) + ", primitive " + std::to_string(p);
+        const std::string where = describe("mesh", size_t(node.mesh), mesh.name) + ", primitive " + std::to_string(p);
         std::optional<TriangleMesh> triangles = read_primitive(m_file, primitive, where);
         if (!triangles) continue;
         const ImportedMaterial& imported = material(primitive.material);
@@ -316,15 +300,13 @@ void SceneWalker::add_mesh(const tinygltf::Node& node, int node_index,
 const ImportedMaterial& SceneWalker::material(int gltf_index) {
     const int key = std::max(gltf_index, -1);
     auto it = m_materials.find(key);
-    if (it == m_materials.end())
-        it = m_materials.emplace(key, import_material(m_file, key, m_desc)).first;
+    if (it == m_materials.end()) it = m_materials.emplace(key, import_material(m_file, key, m_desc)).first;
     return it->second;
 }
 
 void SceneWalker::add_camera(const tinygltf::Node& node, const std::vector<AnimatedTrs>& chain,
                              const std::string& where) {
-    if (size_t(node.camera) >= m_file.model.cameras.size())
-        m_file.fail(where, "camera index out of range");
+    if (size_t(node.camera) >= m_file.model.cameras.size()) m_file.fail(where, "camera index out of range");
     const tinygltf::Camera& camera = m_file.model.cameras[size_t(node.camera)];
     if (camera.type != "perspective") {
         m_file.warn_once(camera.type + " cameras are ignored", where);
@@ -332,8 +314,7 @@ void SceneWalker::add_camera(const tinygltf::Node& node, const std::vector<Anima
     }
     if (m_has_camera) return;
     const tinygltf::PerspectiveCamera& perspective = camera.perspective;
-    if (!(perspective.yfov > 0 && perspective.yfov < pi))
-        m_file.fail(where, "camera yfov must lie in (0, pi)");
+    if (!(perspective.yfov > 0 && perspective.yfov < pi)) m_file.fail(where, "camera yfov must lie in (0, pi)");
     CameraDesc& desc = m_desc.camera;
     desc.placement = chain;
     desc.fov_y_deg = float(perspective.yfov) * deg_per_rad;
@@ -354,21 +335,17 @@ void SceneWalker::add_light(const tinygltf::Node& node, const std::vector<Animat
         m_file.warn_once(light.type + " lights are ignored", where);
         return;
     }
-    if (is_chain_animated(chain))
-        m_file.warn_once("animated lights stay where they are at time 0", where);
+    if (is_chain_animated(chain)) m_file.warn_once("animated lights stay where they are at time 0", where);
     const Transform world_from_light = evaluate_chain(chain, 0);
-    PointLightDesc desc{
-        .name = !light.name.empty() ? light.name : "light " + std::to_string(light_index),
-        .type = light.type == "spot" ? PointLightType::spot : PointLightType::point,
-        .position = world_from_light.point({}),
-        .direction = normalize(world_from_light.vector({0, 0, -1})),
-        .intensity = (light.color.empty() ? Rgb{1, 1, 1} : clamped_rgb(light.color)) *
-                     float(std::max(light.intensity, 0.0) / lumens_per_watt)};
+    PointLightDesc desc{.name = !light.name.empty() ? light.name : "light " + std::to_string(light_index),
+                        .type = light.type == "spot" ? PointLightType::spot : PointLightType::point,
+                        .position = world_from_light.point({}),
+                        .direction = normalize(world_from_light.vector({0, 0, -1})),
+                        .intensity = (light.color.empty() ? Rgb{1, 1, 1} : clamped_rgb(light.color)) *
+                                     float(std::max(light.intensity, 0.0) / lumens_per_watt)};
     if (desc.type == PointLightType::spot) {
-        desc.cone_angle_deg =
-            std::clamp(float(light.spot.outerConeAngle) * deg_per_rad, 0.01f, 90.0f);
-        desc.falloff_start_deg =
-            std::clamp(float(light.spot.innerConeAngle) * deg_per_rad, 0.0f, desc.cone_angle_deg);
+        desc.cone_angle_deg = std::clamp(float(light.spot.outerConeAngle) * deg_per_rad, 0.01f, 90.0f);
+        desc.falloff_start_deg = std::clamp(float(light.spot.innerConeAngle) * deg_per_rad, 0.0f, desc.cone_angle_deg);
     }
     m_desc.point_lights.push_back(desc);
 }
@@ -377,7 +354,8 @@ void SceneWalker::add_light(const tinygltf::Node& node, const std::vector<Animat
 std::string decode_uri(const std::string& uri) {
     std::string out;
     for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+            std::isxdigit(uint8_t(uri[i + 2]))) {
             out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
             i += 2;
         } else {
@@ -401,21 +379,17 @@ void append_images(const GltfFile& file, SceneDesc& desc) {
             desc.images.push_back({.name = name, .width = 1, .height = 1, .rgba = {255, 255, 255, 255}});
             continue;
         }
-        desc.images.push_back({.name = name,
-                               .width = image.width,
-                               .height = image.height,
-                               .rgba = image.image});
+        desc.images.push_back({.name = name, .width = image.width, .height = image.height, .rgba = image.image});
     }
 }
 
 void warn_required_extensions(const GltfFile& file) {
-    static const std::set<std::string> supported = {
-        "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength",
-        "KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_specular"};
+    static const std::set<std::string> supported = {"KHR_materials_transmission",      "KHR_materials_ior",
+                                                    "KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                                    "KHR_texture_transform",           "KHR_materials_specular"};
     for (const std::string& name : file.model.extensionsRequired)
         if (!supported.contains(name))
-            file.warn_once(
-                "required extension " + name + " is not supported; the scene may load wrongly", "");
+            file.warn_once("required extension " + name + " is not supported; the scene may load wrongly", "");
 }
 
 }  // namespace
@@ -436,7 +410,10 @@ SceneDesc load_gltf_scene_desc(const std::string& path) {
     desc.name = std::filesystem::path(path).stem().string();
     bool has_camera = false;
     const float duration_s = append_gltf(path, desc, has_camera);
-    if (!has_camera) throw InputError(path, "the file has no perspective camera (add one, or include the file from a JSON scene with a \"camera\")");
+    if (!has_camera)
+        throw InputError(
+            path,
+            "the file has no perspective camera (add one, or include the file from a JSON scene with a \"camera\")");
     desc.frame_count = frames_covering(duration_s, desc.fps);
     validate(desc);
     return desc;
@@ -452,8 +429,8 @@ float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera) {
     for (const tinygltf::Node& node : file.model.nodes) placements.push_back(node_placement(node));
     const float duration_s = apply_animations(file, placements);
     if (const std::optional<float> rate = sampled_frame_rate(file)) {
-        spdlog::info("{}: animation keys are one every 1/{:.6g} s; using {:.6g} fps as the frame rate", path,
-                     *rate, *rate);
+        spdlog::info("{}: animation keys are one every 1/{:.6g} s; using {:.6g} fps as the frame rate", path, *rate,
+                     *rate);
         desc.fps = *rate;
         desc.fps_source = FpsSource::gltf_keys;
     }

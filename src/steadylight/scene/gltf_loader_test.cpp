@@ -29,8 +29,7 @@ namespace fs = std::filesystem;
 // Building models
 
 /// Appends `size` bytes to buffer 0 as a new bufferView and returns an accessor over them.
-int add_accessor(tinygltf::Model& model, const void* bytes, size_t size, int component_type,
-                 int type, size_t count) {
+int add_accessor(tinygltf::Model& model, const void* bytes, size_t size, int component_type, int type, size_t count) {
     if (model.buffers.empty()) model.buffers.emplace_back();
     std::vector<unsigned char>& data = model.buffers[0].data;
     tinygltf::BufferView view;
@@ -52,8 +51,8 @@ int add_accessor(tinygltf::Model& model, const void* bytes, size_t size, int com
 
 int add_floats(tinygltf::Model& model, const std::vector<float>& values, int type) {
     const size_t components = size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
-    return add_accessor(model, values.data(), values.size() * sizeof(float),
-                        TINYGLTF_COMPONENT_TYPE_FLOAT, type, values.size() / components);
+    return add_accessor(model, values.data(), values.size() * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT, type,
+                        values.size() / components);
 }
 
 /// A primitive over `positions` (x, y, z each), drawn without indices.
@@ -72,16 +71,14 @@ int add_triangle_mesh(tinygltf::Model& model, int material = -1) {
         make_primitive(model, {0, 0, 0, 1, 0, 0, 0, 1, 0}, TINYGLTF_MODE_TRIANGLES, material);
     const uint16_t indices[] = {0, 1, 2};
     primitive.indices =
-        add_accessor(model, indices, sizeof indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                     TINYGLTF_TYPE_SCALAR, 3);
+        add_accessor(model, indices, sizeof indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 3);
     tinygltf::Mesh mesh;
     mesh.primitives.push_back(primitive);
     model.meshes.push_back(mesh);
     return int(model.meshes.size()) - 1;
 }
 
-tinygltf::Node make_node(const std::string& name, int mesh = -1,
-                         std::vector<double> translation = {}) {
+tinygltf::Node make_node(const std::string& name, int mesh = -1, std::vector<double> translation = {}) {
     tinygltf::Node node;
     node.name = name;
     node.mesh = mesh;
@@ -94,8 +91,10 @@ int add_node(tinygltf::Model& model, tinygltf::Node node, int parent = -1) {
     const int index = int(model.nodes.size());
     model.nodes.push_back(std::move(node));
     if (model.scenes.empty()) model.scenes.emplace_back();
-    if (parent >= 0) model.nodes[size_t(parent)].children.push_back(index);
-    else model.scenes[0].nodes.push_back(index);
+    if (parent >= 0)
+        model.nodes[size_t(parent)].children.push_back(index);
+    else
+        model.scenes[0].nodes.push_back(index);
     return index;
 }
 
@@ -124,13 +123,11 @@ tinygltf::Model triangle_with_material(const tinygltf::Material& material) {
 
 /// Adds an animation with one channel that drives `path` of `node` from `values` (VEC4 for
 /// rotations, VEC3 otherwise) at `times`.
-void add_animation(tinygltf::Model& model, int node, const std::string& path,
-                   const std::string& interpolation, const std::vector<float>& times,
-                   const std::vector<float>& values) {
+void add_animation(tinygltf::Model& model, int node, const std::string& path, const std::string& interpolation,
+                   const std::vector<float>& times, const std::vector<float>& values) {
     tinygltf::AnimationSampler sampler;
     sampler.input = add_floats(model, times, TINYGLTF_TYPE_SCALAR);
-    sampler.output =
-        add_floats(model, values, path == "rotation" ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3);
+    sampler.output = add_floats(model, values, path == "rotation" ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3);
     sampler.interpolation = interpolation;
     tinygltf::AnimationChannel channel;
     channel.sampler = 0;
@@ -179,9 +176,7 @@ const ObjectDesc& find_object(const SceneDesc& desc, const std::string& name) {
     throw std::runtime_error("no object \"" + name + "\"");
 }
 
-const TriangleMesh& mesh_of(const ObjectDesc& object) {
-    return std::get<TriangleMesh>(object.geometry);
-}
+const TriangleMesh& mesh_of(const ObjectDesc& object) { return std::get<TriangleMesh>(object.geometry); }
 
 /// Where vertex `v` of `object` is in the world at `time_s`.
 Vec3 world_vertex(const ObjectDesc& object, size_t v, float time_s) {
@@ -203,8 +198,7 @@ class GltfLoader : public ::testing::Test {
 protected:
     void SetUp() override {
         const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-        m_dir = fs::temp_directory_path() /
-                ("steadylight_gltf_" + test + "_" + std::to_string(std::random_device{}()));
+        m_dir = fs::temp_directory_path() / ("steadylight_gltf_" + test + "_" + std::to_string(std::random_device{}()));
         fs::create_directories(m_dir);
     }
     void TearDown() override { fs::remove_all(m_dir); }
@@ -262,8 +256,7 @@ TEST_F(GltfLoader, TriangleUnderTranslatedScaledParentLandsAtItsWorldPosition) {
 
 TEST_F(GltfLoader, NodeMatrixIsDecomposedIntoTranslationRotationScale) {
     // A mirroring scale checks that the decomposition keeps the handedness.
-    const Transform expected =
-        Transform::from_trs({1, -2, 3}, Quat::from_axis_angle({1, 1, 0}, 0.5f), {2, -1, 0.5f});
+    const Transform expected = Transform::from_trs({1, -2, 3}, Quat::from_axis_angle({1, 1, 0}, 0.5f), {2, -1, 0.5f});
     tinygltf::Node node = make_node("Tri", -1);
     for (int column = 0; column < 4; ++column)
         for (int row = 0; row < 4; ++row)
@@ -274,8 +267,7 @@ TEST_F(GltfLoader, NodeMatrixIsDecomposedIntoTranslationRotationScale) {
     for (const Loaded& loaded : write_and_load(model)) {
         SCOPED_TRACE(loaded.path);
         const ObjectDesc& tri = find_object(loaded.desc, "Tri");
-        for (size_t v = 0; v < 3; ++v)
-            expect_near(world_vertex(tri, v, 0), expected.point(mesh_of(tri).positions[v]));
+        for (size_t v = 0; v < 3; ++v) expect_near(world_vertex(tri, v, 0), expected.point(mesh_of(tri).positions[v]));
     }
 }
 
@@ -311,10 +303,8 @@ TEST_F(GltfLoader, StripsAndFansAreTriangulatedAndPointsSkipped) {
         ASSERT_EQ(loaded.desc.objects.size(), 2u);
         // glTF 2.0 §3.7.2.1: strip triangle i is (i, i+1, i+2) for even i and (i, i+2, i+1)
         // for odd i; fan triangle i is (i+1, i+2, 0).
-        EXPECT_EQ(mesh_of(find_object(loaded.desc, "Quad#0")).indices,
-                  (std::vector<int>{0, 1, 2, 1, 3, 2}));
-        EXPECT_EQ(mesh_of(find_object(loaded.desc, "Quad#1")).indices,
-                  (std::vector<int>{1, 2, 0, 2, 3, 0}));
+        EXPECT_EQ(mesh_of(find_object(loaded.desc, "Quad#0")).indices, (std::vector<int>{0, 1, 2, 1, 3, 2}));
+        EXPECT_EQ(mesh_of(find_object(loaded.desc, "Quad#1")).indices, (std::vector<int>{1, 2, 0, 2, 3, 0}));
     }
 }
 
@@ -350,8 +340,7 @@ TEST_F(GltfLoader, PrimitiveWithoutMaterialGetsDefaultGreyLambert) {
 }
 
 TEST_F(GltfLoader, MaterialNameAlreadyInTheSceneGetsTheIndexAppended) {
-    const std::string path =
-        write(triangle_with_material(make_material("Paint", {1, 1, 1})), "m.glb");
+    const std::string path = write(triangle_with_material(make_material("Paint", {1, 1, 1})), "m.glb");
     SceneDesc desc;
     desc.materials.push_back({.name = "Paint"});
     bool has_camera = false;
@@ -397,7 +386,8 @@ TEST_F(GltfLoader, VolumeGivesGlassAbsorptionAndRoughnessMakesItRough) {
     material.extensions["KHR_materials_transmission"] = number_object("transmissionFactor", 1);
     tinygltf::Value::Object volume{{"thicknessFactor", tinygltf::Value(0.5)},
                                    {"attenuationDistance", tinygltf::Value(0.25)}};
-    volume["attenuationColor"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.9), tinygltf::Value(0.5), tinygltf::Value(0.2)});
+    volume["attenuationColor"] =
+        tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.9), tinygltf::Value(0.5), tinygltf::Value(0.2)});
     material.extensions["KHR_materials_volume"] = tinygltf::Value(volume);
     for (const Loaded& loaded : write_and_load(triangle_with_material(material))) {
         SCOPED_TRACE(loaded.path);
@@ -561,8 +551,7 @@ TEST_F(GltfLoader, NormalisedShortRotationsAreDecoded) {
     add_animation(model, node, "rotation", "LINEAR", {0, 1}, {0, 0, 0, 1, 0, 0, 0, 1});
     // Replace the float output by shorts: identity, then 90° about +z.
     const int16_t shorts[] = {0, 0, 0, 32767, 0, 0, 23170, 23170};
-    const int output = add_accessor(model, shorts, sizeof shorts, TINYGLTF_COMPONENT_TYPE_SHORT,
-                                    TINYGLTF_TYPE_VEC4, 2);
+    const int output = add_accessor(model, shorts, sizeof shorts, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC4, 2);
     model.accessors[size_t(output)].normalized = true;
     model.animations[0].samplers[0].output = output;
     for (const Loaded& loaded : write_and_load(model))
@@ -657,8 +646,7 @@ tinygltf::Model keyed_model(const std::vector<std::vector<float>>& key_times) {
     const int mesh = add_triangle_mesh(model);
     for (const std::vector<float>& times : key_times) {
         const int node = add_node(model, make_node("Mover", mesh));
-        add_animation(model, node, "translation", "LINEAR", times,
-                      std::vector<float>(3 * times.size(), 0));
+        add_animation(model, node, "translation", "LINEAR", times, std::vector<float>(3 * times.size(), 0));
     }
     return model;
 }
@@ -771,7 +759,8 @@ TEST_F(GltfLoader, GlbWithoutCameraCannotBeAScene) {
         load_scene_desc(path);
         ADD_FAILURE() << "loaded without an error";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("nocamera.glb: the file has no perspective camera"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("nocamera.glb: the file has no perspective camera"), std::string::npos)
+            << e.what();
     }
 }
 
@@ -807,8 +796,7 @@ TEST_F(GltfLoader, NonIncreasingKeyTimesThrowInputError) {
     tinygltf::Model model;
     const int node = add_node(model, make_node("Tri", add_triangle_mesh(model)));
     add_animation(model, node, "translation", "LINEAR", {0, 1, 1}, {0, 0, 0, 1, 0, 0, 2, 0, 0});
-    for (const std::string& path : write_both(model))
-        expect_input_error(path, "strictly increasing");
+    for (const std::string& path : write_both(model)) expect_input_error(path, "strictly increasing");
 }
 
 }  // namespace

@@ -11,14 +11,13 @@ namespace steadylight::gltf {
 namespace {
 
 /// The number `key` inside extension `name`, or `fallback` when either is absent.
-double extension_number(const tinygltf::ExtensionMap& extensions, const std::string& name,
-                        const std::string& key, double fallback) {
+double extension_number(const tinygltf::ExtensionMap& extensions, const std::string& name, const std::string& key,
+                        double fallback) {
     const auto it = extensions.find(name);
     if (it == extensions.end() || !it->second.IsObject()) return fallback;
     const tinygltf::Value& value = it->second.Get(key);
     return value.IsNumber() ? value.GetNumberAsDouble() : fallback;
 }
-
 
 /// KHR_materials_volume on a transmissive material: Beer-Lambert absorption inside. A thickness
 /// of 0 (the default) says the material is thin-walled, which absorbs nothing; any other
@@ -37,16 +36,13 @@ void set_volume(const GltfFile& file, const tinygltf::Material& m, MaterialDesc&
     if (colour.IsArray() && colour.ArrayLen() >= 3) desc.attenuation_color = {channel(0), channel(1), channel(2)};
 }
 
-void warn_ignored_features(const GltfFile& file, const tinygltf::Material& m,
-                           const std::string& where) {
-    if (m.occlusionTexture.index >= 0)
-        file.warn_once("occlusion maps are ignored (occlusion is ray traced)", where);
+void warn_ignored_features(const GltfFile& file, const tinygltf::Material& m, const std::string& where) {
+    if (m.occlusionTexture.index >= 0) file.warn_once("occlusion maps are ignored (occlusion is ray traced)", where);
     static const std::set<std::string> supported = {"KHR_materials_transmission", "KHR_materials_ior",
                                                     "KHR_materials_emissive_strength", "KHR_materials_specular",
                                                     "KHR_materials_volume"};
     for (const auto& [name, value] : m.extensions)
-        if (!supported.contains(name))
-            file.warn_once("material extension " + name + " is ignored", where);
+        if (!supported.contains(name)) file.warn_once("material extension " + name + " is ignored", where);
 }
 
 /// The vector `key` inside a JSON object value, or `fallback`.
@@ -58,8 +54,10 @@ Vec2 value_vec2(const tinygltf::Value& object, const std::string& key, Vec2 fall
 
 TextureWrap wrap_mode(int gl_wrap) {
     switch (gl_wrap) {
-        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::clamp_to_edge;
-        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::mirrored_repeat;
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+            return TextureWrap::clamp_to_edge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+            return TextureWrap::mirrored_repeat;
     }
     return TextureWrap::repeat;
 }
@@ -107,13 +105,11 @@ AlphaMode alpha_mode(const GltfFile& file, const std::string& mode, const std::s
     return AlphaMode::opaque;
 }
 
-MaterialDesc convert_material(const GltfFile& file, const tinygltf::Material& m,
-                              const std::string& where) {
+MaterialDesc convert_material(const GltfFile& file, const tinygltf::Material& m, const std::string& where) {
     MaterialDesc desc;
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
     const Rgb base_colour = clamped_rgb(pbr.baseColorFactor);
-    if (extension_number(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0) <=
-        0) {
+    if (extension_number(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0) <= 0) {
         desc.type = MaterialType::pbr;
         desc.reflectance = base_colour;
         desc.alpha = pbr.baseColorFactor.size() > 3 ? std::clamp(float(pbr.baseColorFactor[3]), 0.0f, 1.0f) : 1.0f;
@@ -125,7 +121,8 @@ MaterialDesc convert_material(const GltfFile& file, const tinygltf::Material& m,
         // normal-incidence value by specularColorFactor (taken as its largest channel).
         const float specular = float(extension_number(m.extensions, "KHR_materials_specular", "specularFactor", 1));
         float colour = 1;
-        if (const auto it = m.extensions.find("KHR_materials_specular"); it != m.extensions.end() && it->second.IsObject()) {
+        if (const auto it = m.extensions.find("KHR_materials_specular");
+            it != m.extensions.end() && it->second.IsObject()) {
             const tinygltf::Value& c = it->second.Get("specularColorFactor");
             if (c.IsArray() && c.ArrayLen() >= 3) {
                 colour = 0;
@@ -141,11 +138,11 @@ MaterialDesc convert_material(const GltfFile& file, const tinygltf::Material& m,
         desc.metallic_roughness_texture =
             texture_ref(file, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                         pbr.metallicRoughnessTexture.extensions, where);
-        desc.normal_texture = texture_ref(file, m.normalTexture.index, m.normalTexture.texCoord,
-                                          m.normalTexture.extensions, where);
+        desc.normal_texture =
+            texture_ref(file, m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, where);
         desc.normal_scale = float(m.normalTexture.scale);
-        desc.emissive_texture = texture_ref(file, m.emissiveTexture.index, m.emissiveTexture.texCoord,
-                                            m.emissiveTexture.extensions, where);
+        desc.emissive_texture =
+            texture_ref(file, m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, where);
         return desc;
     }
     if (pbr.baseColorTexture.index >= 0 || m.normalTexture.index >= 0)
@@ -165,8 +162,8 @@ MaterialDesc convert_material(const GltfFile& file, const tinygltf::Material& m,
 }
 
 Rgb emission_of(const tinygltf::Material& m) {
-    const float strength = float(
-        extension_number(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1));
+    const float strength =
+        float(extension_number(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1));
     return clamped_rgb(m.emissiveFactor) * std::max(strength, 0.0f);
 }
 
@@ -206,8 +203,7 @@ ImportedMaterial import_material(const GltfFile& file, int index, SceneDesc& des
     const std::string where = describe("material", size_t(index), m.name);
     warn_ignored_features(file, m, where);
     MaterialDesc material = convert_material(file, m, where);
-    material.name = unique_material_name(
-        desc, m.name.empty() ? "material " + std::to_string(index) : m.name, index);
+    material.name = unique_material_name(desc, m.name.empty() ? "material " + std::to_string(index) : m.name, index);
     desc.materials.push_back(material);
     imported.emission = emission_of(m);
     imported.two_sided = m.doubleSided;

@@ -23,7 +23,8 @@ std::string base64(const std::string& bytes) {
     static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     for (size_t i = 0; i < bytes.size(); i += 3) {
-        const uint32_t n = uint32_t(uint8_t(bytes[i])) << 16 | (i + 1 < bytes.size() ? uint32_t(uint8_t(bytes[i + 1])) << 8 : 0) |
+        const uint32_t n = uint32_t(uint8_t(bytes[i])) << 16 |
+                           (i + 1 < bytes.size() ? uint32_t(uint8_t(bytes[i + 1])) << 8 : 0) |
                            (i + 2 < bytes.size() ? uint32_t(uint8_t(bytes[i + 2])) : 0);
         out += table[n >> 18 & 63];
         out += table[n >> 12 & 63];
@@ -40,10 +41,10 @@ std::string read_file(const fs::path& path) {
 
 /// One triangle with POSITION, TEXCOORD_0, TEXCOORD_1 and COLOR_0 in one base64 buffer.
 std::string triangle_buffer() {
-    const float data[] = {0, 0, 0, 1, 0, 0, 0, 1, 0,           // POSITION
-                          0, 0, 1, 0, 0, 1,                    // TEXCOORD_0
-                          0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f,  // TEXCOORD_1
-                          1, 0.5f, 0.25f, 1, 0.5f, 0.25f, 1, 0.5f, 0.25f};  // COLOR_0 (VEC3)
+    const float data[] = {0,    0,    0,     1,    0,    0,     0, 1,    0,       // POSITION
+                          0,    0,    1,     0,    0,    1,                       // TEXCOORD_0
+                          0.5f, 0.5f, 0.5f,  0.5f, 0.5f, 0.5f,                    // TEXCOORD_1
+                          1,    0.5f, 0.25f, 1,    0.5f, 0.25f, 1, 0.5f, 0.25f};  // COLOR_0 (VEC3)
     return base64(std::string(reinterpret_cast<const char*>(data), sizeof data));
 }
 
@@ -67,7 +68,8 @@ protected:
   "extensionsUsed": ["KHR_texture_transform", "KHR_materials_specular"],
   "scene": 0, "scenes": [{"nodes": [0]}],
   "nodes": [{"mesh": 0}],
-  "buffers": [{"byteLength": 120, "uri": "data:application/octet-stream;base64,)" + triangle_buffer() + R"("}],
+  "buffers": [{"byteLength": 120, "uri": "data:application/octet-stream;base64,)" +
+                                 triangle_buffer() + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24},
                   {"buffer": 0, "byteOffset": 60, "byteLength": 24}, {"buffer": 0, "byteOffset": 84, "byteLength": 36}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]},
@@ -115,8 +117,8 @@ TEST_F(GltfTexture, PercentEncodedImageUriIsFound) {
 }
 
 TEST_F(GltfTexture, EmbeddedDataUriPngGivesTheSamePixels) {
-    const SceneDesc desc = load(R"({"uri": "data:image/png;base64,)" + base64(read_file(m_dir / "tex.png")) +
-                                R"("}, {"uri": "tex.jpg"})");
+    const SceneDesc desc =
+        load(R"({"uri": "data:image/png;base64,)" + base64(read_file(m_dir / "tex.png")) + R"("}, {"uri": "tex.jpg"})");
     ASSERT_EQ(desc.images.size(), 2u);
     EXPECT_EQ(desc.images[0].rgba, (std::vector<uint8_t>{128, 128, 128, 255, 255, 255, 255, 0}));
 }
@@ -163,8 +165,8 @@ TEST_F(GltfTexture, MeshReadsTexcoordsColoursAndGeneratesTangents) {
 }
 
 TEST_F(GltfTexture, UndecodableImageLeavesItsTexturesOut) {
-    const SceneDesc desc = load(R"({"uri": "data:image/png;base64,)" + base64("not a png at all") +
-                                R"("}, {"uri": "tex.jpg"})");
+    const SceneDesc desc =
+        load(R"({"uri": "data:image/png;base64,)" + base64("not a png at all") + R"("}, {"uri": "tex.jpg"})");
     ASSERT_EQ(desc.images.size(), 2u);  // the indices of the others stay as they were
     EXPECT_FALSE(desc.materials.at(0).base_color_texture.is_set());
     EXPECT_EQ(desc.materials.at(0).normal_texture.image, 1);

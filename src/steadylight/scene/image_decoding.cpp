@@ -65,8 +65,8 @@ PngChunks walk_png_chunks(const unsigned char* bytes, size_t size) {
     PngChunks chunks;
     size_t at = signature, copied = 0;
     while (at + header <= size) {
-        const size_t length = size_t(bytes[at]) << 24 | size_t(bytes[at + 1]) << 16 | size_t(bytes[at + 2]) << 8 |
-                              bytes[at + 3];
+        const size_t length =
+            size_t(bytes[at]) << 24 | size_t(bytes[at + 1]) << 16 | size_t(bytes[at + 2]) << 8 | bytes[at + 3];
         const unsigned char* type = bytes + at + 4;
         if (std::memcmp(type, "IEND", 4) == 0) break;
         // A chunk cut short anywhere, its CRC too (a 43-byte file whose last chunk header said 2 GB).
@@ -88,10 +88,12 @@ DecodedImage decode_png(const unsigned char* bytes, size_t size) {
     DecodedImage image;
     const PngChunks chunks = walk_png_chunks(bytes, size);
     if (!chunks.truncated_chunk.empty()) {
-        image.problem = fmt::format("a damaged PNG image (its {} chunk runs past the end of the file)", chunks.truncated_chunk);
+        image.problem =
+            fmt::format("a damaged PNG image (its {} chunk runs past the end of the file)", chunks.truncated_chunk);
         return image;
     }
-    if (!chunks.without_empty_idat.empty()) return decode_png(chunks.without_empty_idat.data(), chunks.without_empty_idat.size());
+    if (!chunks.without_empty_idat.empty())
+        return decode_png(chunks.without_empty_idat.data(), chunks.without_empty_idat.size());
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, int(size), &width, &height, &channels)) {
         image.problem = fmt::format("not a PNG or JPEG image ({})", stbi_failure_reason());

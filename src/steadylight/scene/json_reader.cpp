@@ -23,9 +23,7 @@ bool JsonObject::has(const std::string& key) const {
     return m_json.contains(key);
 }
 
-bool JsonObject::is_array(const std::string& key) const {
-    return has(key) && m_json.at(key).is_array();
-}
+bool JsonObject::is_array(const std::string& key) const { return has(key) && m_json.at(key).is_array(); }
 
 std::string JsonObject::path(const std::string& key) const {
     return key.empty() ? (m_pointer.empty() ? "/" : m_pointer) : m_pointer + "/" + key;
@@ -54,19 +52,16 @@ float checked_number(const json& value, const JsonObject& where, const std::stri
 
 float JsonObject::number(const std::string& key) const { return checked_number(at(key), *this, key); }
 
-float JsonObject::number(const std::string& key, float fallback) const {
-    return has(key) ? number(key) : fallback;
-}
+float JsonObject::number(const std::string& key, float fallback) const { return has(key) ? number(key) : fallback; }
 
 int JsonObject::integer(const std::string& key, int fallback) const {
     if (!has(key)) return fallback;
     const json& value = at(key);
     if (!value.is_number_integer()) fail(key, "expected an integer, got " + value.dump());
     // Non-negative integers are unsigned in nlohmann::json: 2^64 - 1 read as int64_t would be -1.
-    const bool fits = value.is_number_unsigned()
-                          ? value.get<uint64_t>() <= uint64_t(std::numeric_limits<int>::max())
-                          : value.get<int64_t>() >= std::numeric_limits<int>::min() &&
-                                value.get<int64_t>() <= std::numeric_limits<int>::max();
+    const bool fits = value.is_number_unsigned() ? value.get<uint64_t>() <= uint64_t(std::numeric_limits<int>::max())
+                                                 : value.get<int64_t>() >= std::numeric_limits<int>::min() &&
+                                                       value.get<int64_t>() <= std::numeric_limits<int>::max();
     if (!fits) fail(key, "expected an integer within +-2^31, got " + value.dump());
     return value.get<int>();
 }
@@ -88,8 +83,7 @@ std::string JsonObject::string(const std::string& key, const std::string& fallba
     return has(key) ? string(key) : fallback;
 }
 
-std::vector<float> JsonObject::fixed_numbers(const json& value, const std::string& where,
-                                             size_t size) const {
+std::vector<float> JsonObject::fixed_numbers(const json& value, const std::string& where, size_t size) const {
     if (!value.is_array() || (size != 0 && value.size() != size))
         fail(where, size ? "expected an array of " + std::to_string(size) + " numbers, got " + value.dump()
                          : "expected an array of numbers, got " + value.dump());
@@ -104,9 +98,7 @@ Vec3 JsonObject::vec3(const std::string& key) const {
     return {v[0], v[1], v[2]};
 }
 
-Vec3 JsonObject::vec3(const std::string& key, Vec3 fallback) const {
-    return has(key) ? vec3(key) : fallback;
-}
+Vec3 JsonObject::vec3(const std::string& key, Vec3 fallback) const { return has(key) ? vec3(key) : fallback; }
 
 Rgb JsonObject::rgb_value(const json& value, const std::string& where) const {
     if (value.is_number()) {
@@ -129,9 +121,7 @@ std::vector<Rgb> JsonObject::rgbs(const std::string& key) const {
     return result;
 }
 
-std::vector<float> JsonObject::numbers(const std::string& key) const {
-    return fixed_numbers(at(key), key, 0);
-}
+std::vector<float> JsonObject::numbers(const std::string& key) const { return fixed_numbers(at(key), key, 0); }
 
 std::vector<std::vector<float>> JsonObject::tuples(const std::string& key, size_t size) const {
     const json& value = at(key);
@@ -142,9 +132,7 @@ std::vector<std::vector<float>> JsonObject::tuples(const std::string& key, size_
     return result;
 }
 
-JsonObject JsonObject::object(const std::string& key) const {
-    return JsonObject(at(key), m_file, path(key));
-}
+JsonObject JsonObject::object(const std::string& key) const { return JsonObject(at(key), m_file, path(key)); }
 
 std::vector<JsonObject> JsonObject::objects(const std::string& key) const {
     const json& value = at(key);
@@ -166,8 +154,7 @@ std::vector<std::pair<std::string, JsonObject>> JsonObject::members(const std::s
 
 void JsonObject::warn_unread() const {
     for (auto it = m_json.begin(); it != m_json.end(); ++it)
-        if (!m_read.count(it.key()))
-            spdlog::warn("{}:{}: unknown field \"{}\" ignored", m_file, path(""), it.key());
+        if (!m_read.count(it.key())) spdlog::warn("{}:{}: unknown field \"{}\" ignored", m_file, path(""), it.key());
 }
 
 json parse_json_file(const std::string& path) {

@@ -53,8 +53,7 @@ public:
 
 private:
     const nlohmann::json& at(const std::string& key) const;
-    std::vector<float> fixed_numbers(const nlohmann::json& value, const std::string& where,
-                                     size_t size) const;
+    std::vector<float> fixed_numbers(const nlohmann::json& value, const std::string& where, size_t size) const;
     Rgb rgb_value(const nlohmann::json& value, const std::string& where) const;
     std::string path(const std::string& key) const;
 

@@ -46,7 +46,8 @@ SurfaceAttributes surface_attributes(const TriangleMesh& mesh, TrianglePoint at)
 }
 
 Rgba base_color_at(const SceneDesc& desc, const MaterialDesc& m, const SurfaceAttributes& a) {
-    Rgba c{m.reflectance.r * a.color[0], m.reflectance.g * a.color[1], m.reflectance.b * a.color[2], m.alpha * a.color[3]};
+    Rgba c{m.reflectance.r * a.color[0], m.reflectance.g * a.color[1], m.reflectance.b * a.color[2],
+           m.alpha * a.color[3]};
     if (m.base_color_texture.is_set()) {
         const Rgba t = sample(desc, m.base_color_texture, a, true);
         for (size_t k = 0; k < 4; ++k) c[k] *= t[k];

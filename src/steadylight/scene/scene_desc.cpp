@@ -61,8 +61,7 @@ Track<T> parse_track_keys(const JsonObject& json, std::vector<T> values) {
         json.fail("values", "has " + std::to_string(track.values.size()) + " entries for " +
                                 std::to_string(track.times.size()) + " times");
     for (size_t i = 1; i < track.times.size(); ++i)
-        if (!(track.times[i] > track.times[i - 1]))
-            json.fail("times", "times must be strictly increasing");
+        if (!(track.times[i] > track.times[i - 1])) json.fail("times", "times must be strictly increasing");
     json.warn_unread();
     return track;
 }
@@ -106,10 +105,8 @@ AnimatedTrs parse_transform(const JsonObject& json) {
 void parse_trs_tracks(const JsonObject& animation, AnimatedTrs& trs) {
     if (animation.has("translation"))
         trs.translation_track = parse_track<Vec3>(animation.object("translation"), 3, vec3_from);
-    if (animation.has("rotation"))
-        trs.rotation_track = parse_track<Quat>(animation.object("rotation"), 4, quat_from);
-    if (animation.has("scale"))
-        trs.scale_track = parse_track<Vec3>(animation.object("scale"), 3, vec3_from);
+    if (animation.has("rotation")) trs.rotation_track = parse_track<Quat>(animation.object("rotation"), 4, quat_from);
+    if (animation.has("scale")) trs.scale_track = parse_track<Vec3>(animation.object("scale"), 3, vec3_from);
 }
 
 /// "transform" and "animation" (translation, rotation and scale tracks only).
@@ -158,7 +155,8 @@ MaterialDesc parse_material(const std::string& name, const JsonObject& json) {
     for (int c = 0; c < 3; ++c) {
         if (m.reflectance[c] < 0 || m.reflectance[c] > 1) json.fail("reflectance", "must lie in [0, 1]");
         if (m.transmittance[c] < 0 || m.transmittance[c] > 1) json.fail("transmittance", "must lie in [0, 1]");
-        if (m.attenuation_color[c] < 0 || m.attenuation_color[c] > 1) json.fail("attenuation_color", "must lie in [0, 1]");
+        if (m.attenuation_color[c] < 0 || m.attenuation_color[c] > 1)
+            json.fail("attenuation_color", "must lie in [0, 1]");
     }
     if (!(m.ior > 0)) json.fail("ior", "must be positive");
     const bool smooth_allowed = m.type == MaterialType::dielectric;
@@ -193,8 +191,8 @@ Geometry parse_shape(const JsonObject& json) {
     return geometry;
 }
 
-ObjectDesc parse_object(const JsonObject& json, const std::map<std::string, int>& materials,
-                        int black_material, int index) {
+ObjectDesc parse_object(const JsonObject& json, const std::map<std::string, int>& materials, int black_material,
+                        int index) {
     ObjectDesc object;
     object.name = json.string("name", "object" + std::to_string(index));
     object.geometry = parse_shape(json.object("shape"));
@@ -207,7 +205,8 @@ ObjectDesc parse_object(const JsonObject& json, const std::map<std::string, int>
     if (json.has("animation")) {
         const JsonObject animation = json.object("animation");
         parse_trs_tracks(animation, object.placement[0]);
-        if (animation.has("emission")) object.emission_track = parse_light_track(animation.object("emission"), "radiance");
+        if (animation.has("emission"))
+            object.emission_track = parse_light_track(animation.object("emission"), "radiance");
         animation.warn_unread();
     }
     if (json.has("material")) {
@@ -237,8 +236,7 @@ PointLightDesc parse_point_light(const JsonObject& json) {
         light.direction = normalize(light.direction);
         light.cone_angle_deg = json.number("cone_degrees", light.cone_angle_deg);
         light.falloff_start_deg = json.number("falloff_start_degrees", light.cone_angle_deg * 0.8f);
-        if (!(light.cone_angle_deg > 0 && light.cone_angle_deg <= 90))
-            json.fail("cone_degrees", "must lie in (0, 90]");
+        if (!(light.cone_angle_deg > 0 && light.cone_angle_deg <= 90)) json.fail("cone_degrees", "must lie in (0, 90]");
         if (!(light.falloff_start_deg >= 0 && light.falloff_start_deg <= light.cone_angle_deg))
             json.fail("falloff_start_degrees", "must lie in [0, cone_degrees]");
     } else {
@@ -251,7 +249,8 @@ PointLightDesc parse_point_light(const JsonObject& json) {
         if (light.intensity[c] < 0) json.fail("intensity", "must not be negative");
     if (json.has("animation")) {
         const JsonObject animation = json.object("animation");
-        if (animation.has("intensity")) light.intensity_track = parse_light_track(animation.object("intensity"), "intensity");
+        if (animation.has("intensity"))
+            light.intensity_track = parse_light_track(animation.object("intensity"), "intensity");
         animation.warn_unread();
     }
     json.warn_unread();
@@ -264,8 +263,8 @@ CameraDesc parse_camera(const JsonObject& json, const CameraDesc& fallback) {
     if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) json.fail("fov_y", "must lie in (0, 180) degrees");
     if (json.has("resolution")) {
         const std::vector<float> r = json.numbers("resolution");
-        if (r.size() != 2 || r[0] < 1 || r[1] < 1 || r[0] > 65536 || r[1] > 65536 ||
-            r[0] != std::floor(r[0]) || r[1] != std::floor(r[1]))
+        if (r.size() != 2 || r[0] < 1 || r[1] < 1 || r[0] > 65536 || r[1] > 65536 || r[0] != std::floor(r[0]) ||
+            r[1] != std::floor(r[1]))
             json.fail("resolution", "expected [width, height] in whole pixels");
         camera.width = int(r[0]);
         camera.height = int(r[1]);
@@ -278,7 +277,8 @@ CameraDesc parse_camera(const JsonObject& json, const CameraDesc& fallback) {
         const Vec3 up = json.vec3("up", {0, 1, 0});
         if (length(back) == 0) json.fail("look_at", "must differ from position");
         const Vec3 right = cross(up, back);
-        if (length(right) < 1e-6f * length(back) * length(up)) json.fail("up", "must not be parallel to the view direction");
+        if (length(right) < 1e-6f * length(back) * length(up))
+            json.fail("up", "must not be parallel to the view direction");
         placement.translation = position;
         placement.rotation = Quat::from_basis(normalize(right), normalize(cross(back, right)), normalize(back));
     }
@@ -304,8 +304,7 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& where) {
         if (!is_finite(normal)) throw InputError(where, "vertex normal is not finite");
 }
 
-void validate_placement(const std::vector<AnimatedTrs>& chain, const SceneDesc& desc,
-                        const std::string& where) {
+void validate_placement(const std::vector<AnimatedTrs>& chain, const SceneDesc& desc, const std::string& where) {
     for (int frame = 0; frame < desc.frame_count; ++frame) {
         const Transform t = evaluate_chain(chain, desc.frame_time_s(frame));
         if (!t.is_finite()) throw InputError(where, "transform is not finite at frame " + std::to_string(frame));
@@ -354,9 +353,11 @@ void validate(const SceneDesc& desc) {
         if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4)
             throw InputError(file + ": image \"" + image.name + "\"", "pixel data does not match its size");
     for (const MaterialDesc& m : desc.materials)
-        for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture})
+        for (const TextureRef* t :
+             {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.emissive_texture})
             if (t->image >= int(desc.images.size()) || t->texcoord < 0 || t->texcoord > 1)
-                throw InputError(file + ": material \"" + m.name + "\"", "texture image or texture coordinate set out of range");
+                throw InputError(file + ": material \"" + m.name + "\"",
+                                 "texture image or texture coordinate set out of range");
     for (const ObjectDesc& object : desc.objects) {
         const std::string where = file + ": object \"" + object.name + "\"";
         if (object.material < 0 || size_t(object.material) >= desc.materials.size())
@@ -386,9 +387,12 @@ void validate(const SceneDesc& desc) {
 
 std::string describe_fps_source(const SceneDesc& desc) {
     switch (desc.fps_source) {
-    case FpsSource::scene_file: return "from the scene file";
-    case FpsSource::gltf_keys: return fmt::format("from the glTF keys, one every 1/{:.6g} s", desc.fps);
-    case FpsSource::default_rate: break;
+        case FpsSource::scene_file:
+            return "from the scene file";
+        case FpsSource::gltf_keys:
+            return fmt::format("from the glTF keys, one every 1/{:.6g} s", desc.fps);
+        case FpsSource::default_rate:
+            break;
     }
     return "default";
 }

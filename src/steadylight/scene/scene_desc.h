@@ -34,10 +34,10 @@ struct MaterialDesc {
     // attenuation_distance (scene units) inside keeps attenuation_color of itself.
     Rgb attenuation_color{1, 1, 1};
     float attenuation_distance = std::numeric_limits<float>::infinity();
-    float metallic = 0;                 // pbr: 1 conductor, 0 coated diffuse (blended between)
-    float specular = 1;                 // pbr: scales the coat's Fresnel (KHR_materials_specular); 0: no coat
-    float specular_color = 1;           // pbr: scales the coat's normal-incidence Fresnel only
-    float alpha = 1;                    // base colour alpha
+    float metallic = 0;        // pbr: 1 conductor, 0 coated diffuse (blended between)
+    float specular = 1;        // pbr: scales the coat's Fresnel (KHR_materials_specular); 0: no coat
+    float specular_color = 1;  // pbr: scales the coat's normal-incidence Fresnel only
+    float alpha = 1;           // base colour alpha
     AlphaMode alpha_mode = AlphaMode::opaque;
     float alpha_cutoff = 0.5f;
     TextureRef base_color_texture;          // sRGB; multiplies `reflectance` and `alpha`
@@ -79,12 +79,12 @@ bool is_ever_lit(const Track<Rgb>& track);
 struct ObjectDesc {
     std::string name;
     Geometry geometry;
-    int material = 0;               // index into SceneDesc::materials
-    Rgb emission;                   // radiance leaving the front side; black when not a light
+    int material = 0;                          // index into SceneDesc::materials
+    Rgb emission;                              // radiance leaving the front side; black when not a light
     std::optional<Track<Rgb>> emission_track;  // when set, replaces `emission` (lights switched or dimmed)
     bool two_sided_emission = false;
     std::vector<AnimatedTrs> placement;  // world_from_object = product, parent first
-    bool marked_dynamic = false;    // "dynamic": true in the file, even when not animated
+    bool marked_dynamic = false;         // "dynamic": true in the file, even when not animated
 
     /// The radiance leaving the front side at `time_s`.
     Rgb emission_at(float time_s) const { return emission_track ? emission_track->evaluate(time_s) : emission; }

@@ -40,7 +40,8 @@ protected:
     std::string write_scene(const std::string& objects, const std::string& extra = "") const {
         return write("scene.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
             "materials": {"white": {"type": "lambert", "reflectance": 0.5}},
-            "objects": [)" + objects + "]" + extra + "}");
+            "objects": [)" + objects + "]" +
+                                       extra + "}");
     }
 
     /// Expects loading `path` to fail with a message containing every one of `parts`.
@@ -49,7 +50,8 @@ protected:
             load_scene_desc(path);
             ADD_FAILURE() << "no error for " << path;
         } catch (const InputError& e) {
-            for (const std::string& part : parts) EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+            for (const std::string& part : parts)
+                EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
         }
     }
 
@@ -161,7 +163,8 @@ TEST_F(SceneFiles, MarkedObjectIsDynamicWithoutAnimation) {
 
 TEST_F(SceneFiles, LoadsObjMeshRelativeToTheScene) {
     write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    const SceneDesc desc = load_scene_desc(write_scene(R"({"shape": {"type": "mesh", "file": "tri.obj"}, "material": "white"})"));
+    const SceneDesc desc =
+        load_scene_desc(write_scene(R"({"shape": {"type": "mesh", "file": "tri.obj"}, "material": "white"})"));
     EXPECT_EQ(std::get<TriangleMesh>(desc.objects[0].geometry).indices.size(), 3u);
 }
 
@@ -169,7 +172,8 @@ TEST_F(SceneFiles, LoadsObjMeshRelativeToTheScene) {
 // one are read as a mesh's or left out, never handed over unchecked (a fuzzing finding).
 TEST_F(SceneFiles, ObjLinesEndingInALoneCarriageReturnAreFiltered) {
     write("old_mac.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rvw 1 0 1e999\rf 1 2 3\r");
-    const SceneDesc desc = load_scene_desc(write_scene(R"({"shape": {"type": "mesh", "file": "old_mac.obj"}, "material": "white"})"));
+    const SceneDesc desc =
+        load_scene_desc(write_scene(R"({"shape": {"type": "mesh", "file": "old_mac.obj"}, "material": "white"})"));
     const TriangleMesh& mesh = std::get<TriangleMesh>(desc.objects[0].geometry);
     EXPECT_EQ(mesh.positions.size(), 3u);
     EXPECT_EQ(mesh.indices.size(), 3u);
@@ -177,7 +181,8 @@ TEST_F(SceneFiles, ObjLinesEndingInALoneCarriageReturnAreFiltered) {
 
 // Glass is smooth unless it says otherwise; rough and absorbing glass take their keys.
 TEST_F(SceneFiles, GlassIsSmoothByDefaultAndTakesRoughnessAndAbsorption) {
-    const SceneDesc desc = load_scene_desc(write("glass.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+    const SceneDesc desc =
+        load_scene_desc(write("glass.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
         "materials": {"clear": {"type": "dielectric"},
                       "amber": {"type": "dielectric", "roughness": 0.2, "attenuation_color": [0.9, 0.5, 0.2],
                                 "attenuation_distance": 0.25}},
@@ -199,9 +204,11 @@ TEST_F(SceneFiles, MissingFileIsAnError) { expect_error((m_dir / "nope.json").st
 // 2^32 + 2 frames would wrap to 2 in an int: refused, never read as another number.
 TEST_F(SceneFiles, IntegerBeyondIntIsAnError) {
     for (const char* count : {"4294967298", "18446744073709551615", "-4294967298"})
-        expect_error(write("big.json", std::string(R"({"frames": {"count": )") + count +
-                                           R"(}, "camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]}, "materials": {}, "objects": []})"),
-                     {"big.json:/frames/count", "expected an integer within"});
+        expect_error(
+            write("big.json",
+                  std::string(R"({"frames": {"count": )") + count +
+                      R"(}, "camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]}, "materials": {}, "objects": []})"),
+            {"big.json:/frames/count", "expected an integer within"});
 }
 
 // A name longer than the file system allows is not found, like any other (it made the standard
@@ -213,10 +220,13 @@ TEST_F(SceneFiles, FileNameTooLongIsNotFound) {
                  {"not found"});
 }
 
-TEST_F(SceneFiles, SyntaxErrorNamesTheFile) { expect_error(write("bad.json", "{\"camera\": "), {"bad.json", "invalid JSON"}); }
+TEST_F(SceneFiles, SyntaxErrorNamesTheFile) {
+    expect_error(write("bad.json", "{\"camera\": "), {"bad.json", "invalid JSON"});
+}
 
 TEST_F(SceneFiles, NanIsAnError) {
-    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": NaN}, "material": "white"})"), {"scene.json", "invalid JSON"});
+    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": NaN}, "material": "white"})"),
+                 {"scene.json", "invalid JSON"});
 }
 
 TEST_F(SceneFiles, InfiniteNumberIsAnError) {
@@ -241,21 +251,25 @@ TEST_F(SceneFiles, MissingMeshFileIsAnError) {
 
 TEST_F(SceneFiles, BrokenObjIsAnError) {
     write("broken.obj", "this is not an OBJ file\n");
-    expect_error(write_scene(R"({"shape": {"type": "mesh", "file": "broken.obj"}, "material": "white"})"), {"broken.obj"});
+    expect_error(write_scene(R"({"shape": {"type": "mesh", "file": "broken.obj"}, "material": "white"})"),
+                 {"broken.obj"});
 }
 
 TEST_F(SceneFiles, ZeroAreaLightIsAnError) {
-    expect_error(write_scene(R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [2,0,0]}, "emission": 5})"),
-                 {"lamp", "zero area"});
+    expect_error(
+        write_scene(
+            R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [2,0,0]}, "emission": 5})"),
+        {"lamp", "zero area"});
 }
 
 TEST_F(SceneFiles, UnknownMaterialIsAnError) {
-    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": 1}, "material": "glas"})"), {"unknown material \"glas\""});
+    expect_error(write_scene(R"({"shape": {"type": "sphere", "radius": 1}, "material": "glas"})"),
+                 {"unknown material \"glas\""});
 }
 
 TEST_F(SceneFiles, NonIncreasingKeyTimesAreAnError) {
     const std::string animated = floor_quad.substr(0, floor_quad.size() - 1) +
-        R"(, "animation": {"translation": {"times": [0, 0], "values": [[0,0,0],[1,0,0]]}}})";
+                                 R"(, "animation": {"translation": {"times": [0, 0], "values": [[0,0,0],[1,0,0]]}}})";
     expect_error(write_scene(animated), {"/objects/0/animation/translation/times", "increasing"});
 }
 
@@ -277,7 +291,8 @@ TEST_F(SceneFiles, MoreFramesThanAnAnimationMayHaveAreAnError) {
 }
 
 TEST_F(SceneFiles, SegmentStartsMustIncreaseWithinTheAnimation) {
-    expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [5, 3])"), {"/segments", "increase"});
+    expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [5, 3])"),
+                 {"/segments", "increase"});
     expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [12])"), {"/segments", "within"});
 }
 
@@ -309,8 +324,9 @@ TEST_F(SceneFiles, LinearEmissionTrackMakesEveryChangingFrameItsOwnSegment) {
 }
 
 TEST_F(SceneFiles, ConstantEmissionTrackNeitherAnimatesNorSplits) {
-    const Scene scene(load_scene_desc(write_scene(sphere_light_with_track(R"({"times": [0, 1], "values": [5, [5, 5, 5]]})"),
-                                                  R"(, "frames": {"count": 20, "fps": 10})")));
+    const Scene scene(
+        load_scene_desc(write_scene(sphere_light_with_track(R"({"times": [0, 1], "values": [5, [5, 5, 5]]})"),
+                                    R"(, "frames": {"count": 20, "fps": 10})")));
     EXPECT_FALSE(scene.object(0).is_emission_animated());
     EXPECT_EQ(scene.segments().size(), 1u);
 }
@@ -324,7 +340,7 @@ TEST_F(SceneFiles, LampIntensityTrackStepsAndSplitsBesideTheExplicitSegments) {
     const Scene scene(load_scene_desc(write_scene(floor_quad, lamp)));
     EXPECT_EQ(scene.evaluate(0).point_light_intensity[0], (Rgb{1, 2, 3}));  // held before the first key
     EXPECT_EQ(scene.evaluate(6).point_light_intensity[1], (Rgb{1, 1, 1}));
-    EXPECT_EQ(scene.evaluate(7).point_light_intensity[1], Rgb{});          // switched off
+    EXPECT_EQ(scene.evaluate(7).point_light_intensity[1], Rgb{});  // switched off
     ASSERT_EQ(scene.segments().size(), 3u);
     EXPECT_EQ(scene.segments()[1].first, 3);
     EXPECT_EQ(scene.segments()[1].last, 6);
@@ -376,11 +392,13 @@ TEST_F(SceneFiles, IntensityTrackErrorsNameTheirPointer) {
 }
 
 TEST_F(SceneFiles, LightOffAtSomeFramesIsFineButZeroAreaIsNot) {
-    const std::string off_then_on = R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [0,0,1]},
+    const std::string off_then_on =
+        R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [0,0,1]},
         "animation": {"emission": {"interpolation": "step", "times": [0, 1], "values": [0, 5]}}})";
     const SceneDesc desc = load_scene_desc(write_scene(off_then_on, R"(, "frames": {"count": 2, "fps": 1})"));
     EXPECT_TRUE(desc.objects[0].is_emitter());  // a light, off at frame 0; it reflects nothing
-    const std::string flat = R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [2,0,0]},
+    const std::string flat =
+        R"({"name": "lamp", "shape": {"type": "quad", "corner": [0,1,0], "edge_u": [1,0,0], "edge_v": [2,0,0]},
         "animation": {"emission": {"interpolation": "step", "times": [0, 1], "values": [0, 5]}}})";
     expect_error(write_scene(flat), {"lamp", "zero area"});
 }

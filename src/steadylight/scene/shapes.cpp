@@ -89,8 +89,8 @@ std::string mesh_statements_of_obj(const std::string& path) {
         const size_t start = line.find_first_not_of(" \t");
         const std::string_view rest = start == std::string::npos ? std::string_view() : line.substr(start);
         const std::string_view keyword = rest.substr(0, rest.find_first_of(" \t"));
-        if (keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f" || keyword == "o" || keyword == "g" ||
-            keyword == "s")
+        if (keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f" || keyword == "o" ||
+            keyword == "g" || keyword == "s")
             text += line;
         text += '\n';
         begin = end + (file.compare(end, 2, "\r\n") == 0 ? 2 : 1);
@@ -133,7 +133,8 @@ TriangleMesh load_obj_mesh(const std::string& path) {
                 all_normals = false;
                 continue;
             }
-            normals.push_back({obj_coordinate(attrib.normals[3 * n], path), obj_coordinate(attrib.normals[3 * n + 1], path),
+            normals.push_back({obj_coordinate(attrib.normals[3 * n], path),
+                               obj_coordinate(attrib.normals[3 * n + 1], path),
                                obj_coordinate(attrib.normals[3 * n + 2], path)});
         }
     }

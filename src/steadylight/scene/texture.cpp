@@ -9,12 +9,14 @@ namespace {
 /// Texel index `i` on an axis of `n` texels, wrapped as the sampler says (glTF 2.0 §3.8.4).
 int wrap_index(int i, int n, TextureWrap wrap) {
     switch (wrap) {
-        case TextureWrap::clamp_to_edge: return std::clamp(i, 0, n - 1);
+        case TextureWrap::clamp_to_edge:
+            return std::clamp(i, 0, n - 1);
         case TextureWrap::mirrored_repeat: {
             const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
             return m < n ? m : 2 * n - 1 - m;
         }
-        case TextureWrap::repeat: break;
+        case TextureWrap::repeat:
+            break;
     }
     return ((i % n) + n) % n;
 }
@@ -56,8 +58,10 @@ Rgba sample_texture(const TextureImage& image, const TextureRef& ref, Vec2 uv, b
     const float fx = x - 0.5f, fy = y - 0.5f;
     const float x0f = std::floor(fx), y0f = std::floor(fy);
     const float tx = fx - x0f, ty = fy - y0f;
-    const int x0 = wrap_index(int(x0f), image.width, ref.wrap_s), x1 = wrap_index(int(x0f) + 1, image.width, ref.wrap_s);
-    const int y0 = wrap_index(int(y0f), image.height, ref.wrap_t), y1 = wrap_index(int(y0f) + 1, image.height, ref.wrap_t);
+    const int x0 = wrap_index(int(x0f), image.width, ref.wrap_s),
+              x1 = wrap_index(int(x0f) + 1, image.width, ref.wrap_s);
+    const int y0 = wrap_index(int(y0f), image.height, ref.wrap_t),
+              y1 = wrap_index(int(y0f) + 1, image.height, ref.wrap_t);
     const Rgba a = texel(image, x0, y0, srgb), b = texel(image, x1, y0, srgb);
     const Rgba c = texel(image, x0, y1, srgb), d = texel(image, x1, y1, srgb);
     Rgba out;

@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-
 namespace steadylight {
 namespace {
 
@@ -37,9 +36,9 @@ TEST(Texture, WrapModesPlaceCoordinatesOutsideZeroOne) {
     EXPECT_FLOAT_EQ(red(image, ref, 1.1f), 153 / 255.0f);
     EXPECT_FLOAT_EQ(red(image, ref, -3.0f), 0);
     ref.wrap_s = TextureWrap::mirrored_repeat;
-    EXPECT_FLOAT_EQ(red(image, ref, 1.1f), 153 / 255.0f);   // texel 4 mirrors to 3
-    EXPECT_FLOAT_EQ(red(image, ref, 1.3f), 102 / 255.0f);   // texel 5 mirrors to 2
-    EXPECT_FLOAT_EQ(red(image, ref, -0.1f), 0);             // texel -1 mirrors to 0
+    EXPECT_FLOAT_EQ(red(image, ref, 1.1f), 153 / 255.0f);  // texel 4 mirrors to 3
+    EXPECT_FLOAT_EQ(red(image, ref, 1.3f), 102 / 255.0f);  // texel 5 mirrors to 2
+    EXPECT_FLOAT_EQ(red(image, ref, -0.1f), 0);            // texel -1 mirrors to 0
 }
 
 TEST(Texture, BilinearInterpolatesBetweenTexelCentres) {

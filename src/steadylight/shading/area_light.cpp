@@ -38,19 +38,30 @@ class AreaLight final : public Light {
 public:
     AreaLight(const ObjectDesc& object, Rgb Le, std::vector<Triangle> triangles, std::vector<float> cdf, float area,
               EmissiveTexture texture)
-        : m_object(object), m_Le(Le), m_triangles(std::move(triangles)), m_cdf(std::move(cdf)), m_area(area),
+        : m_object(object),
+          m_Le(Le),
+          m_triangles(std::move(triangles)),
+          m_cdf(std::move(cdf)),
+          m_area(area),
           m_texture(texture) {
         bound_triangles();
         if (m_triangles.size() == 2 && dot(m_triangles[0].n, m_triangles[1].n) > 0.9999f)
             m_rectangle = rectangle_of({m_triangles[0].p0, m_triangles[0].p1, m_triangles[0].p2},
                                        {m_triangles[1].p0, m_triangles[1].p1, m_triangles[1].p2});
         // Lights are chosen by power: a textured one by its image's average (its uv layout is not weighed).
-        m_mean_Le = m_texture.is_set() ? m_Le * average_color(m_texture.desc->images[size_t(m_texture.material->emissive_texture.image)], true)
-                                       : m_Le;
+        m_mean_Le =
+            m_texture.is_set()
+                ? m_Le * average_color(m_texture.desc->images[size_t(m_texture.material->emissive_texture.image)], true)
+                : m_Le;
     }
 
     AreaLight(const ObjectDesc& object, Rgb Le, Vec3 center, float radius)
-        : m_object(object), m_Le(Le), m_mean_Le(Le), m_center(center), m_radius(radius), m_area(4 * pi * radius * radius),
+        : m_object(object),
+          m_Le(Le),
+          m_mean_Le(Le),
+          m_center(center),
+          m_radius(radius),
+          m_area(4 * pi * radius * radius),
           m_bound_radius(radius) {}
 
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const override {
@@ -74,7 +85,9 @@ public:
         if (!(s.distance > 0)) return std::nullopt;
         s.wi = d / s.distance;
         s.Li = emitted_radiance(m_object, m_Le * tint, s.n, -s.wi);
-        s.pdf = seen ? 1 / seen->solid_angle() : cone ? uniform_cone_pdf(1 - *cone) : area_to_solid_angle(1 / m_area, ref, s.p, s.n);
+        s.pdf = seen   ? 1 / seen->solid_angle()
+                : cone ? uniform_cone_pdf(1 - *cone)
+                       : area_to_solid_angle(1 / m_area, ref, s.p, s.n);
         if (is_black(s.Li) || !(s.pdf > 0)) return std::nullopt;
         return s;
     }
@@ -184,7 +197,8 @@ private:
         const Vec3 wi = Frame::from_normal(to_center / distance)
                             .to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
         // The nearer hit of ref + t wi: t = d cos - sqrt(R^2 - d^2 sin^2).
-        const float t = distance * cos_theta - std::sqrt(std::max(0.0f, m_radius * m_radius - distance * distance * sin2_theta));
+        const float t =
+            distance * cos_theta - std::sqrt(std::max(0.0f, m_radius * m_radius - distance * distance * sin2_theta));
         return ref + wi * t;
     }
 
@@ -210,8 +224,8 @@ private:
             return {1, 1, 1};
         }
         // Choose a triangle with u.x, then reuse the remainder of u.x inside it.
-        const size_t i = std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u.x) - m_cdf.begin()),
-                                  m_triangles.size() - 1);
+        const size_t i =
+            std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u.x) - m_cdf.begin()), m_triangles.size() - 1);
         const float lo = i ? m_cdf[i - 1] : 0;
         const float ux = std::clamp((u.x - lo) / std::max(m_cdf[i] - lo, 1e-20f), 0.0f, 0x1.fffffep-1f);
         const Vec2 b = sample_uniform_triangle({ux, u.y});
@@ -229,8 +243,8 @@ private:
     Vec3 m_center;
     float m_radius = 0;
     float m_area = 0;
-    float m_bound_radius = 0;  // about m_center
-    Vec3 m_bound_normal;       // zero unless flat and one-sided
+    float m_bound_radius = 0;              // about m_center
+    Vec3 m_bound_normal;                   // zero unless flat and one-sided
     std::optional<Rectangle> m_rectangle;  // when the emitter is one (two triangles)
     EmissiveTexture m_texture;
 };
@@ -243,7 +257,9 @@ std::unique_ptr<Light> make_mesh_light(const ObjectDesc& object, Rgb Le, const T
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
         Triangle t{world_from_object.point(mesh.positions[size_t(mesh.indices[i])]),
                    world_from_object.point(mesh.positions[size_t(mesh.indices[i + 1])]),
-                   world_from_object.point(mesh.positions[size_t(mesh.indices[i + 2])]), {}, int(i / 3)};
+                   world_from_object.point(mesh.positions[size_t(mesh.indices[i + 2])]),
+                   {},
+                   int(i / 3)};
         const Vec3 c = cross(t.p1 - t.p0, t.p2 - t.p0);
         const float a = 0.5f * length(c);
         if (!(a > 0)) continue;

@@ -8,16 +8,20 @@ namespace steadylight {
 
 std::unique_ptr<Bsdf> make_bsdf(const MaterialDesc& material) {
     switch (material.type) {
-        case MaterialType::lambert: return make_lambert(material.reflectance);
-        case MaterialType::mirror: return make_mirror(material.reflectance);
+        case MaterialType::lambert:
+            return make_lambert(material.reflectance);
+        case MaterialType::mirror:
+            return make_mirror(material.reflectance);
         case MaterialType::dielectric:
             // Below GGX's smallest roughness glass is smooth: a delta BSDF, as it always was. The
             // JSON and glTF readers set 0 for smooth glass; a MaterialDesc built in code keeps
             // the default 0.3, rough glass, unless it says .roughness = 0.
             if (material.roughness < min_pbr_roughness) return make_dielectric(material.ior, material.transmittance);
             return make_rough_dielectric(material.ior, material.roughness, material.transmittance);
-        case MaterialType::glossy: return make_glossy(material.reflectance, material.roughness);
-        case MaterialType::pbr: return make_pbr(pbr_params(material));
+        case MaterialType::glossy:
+            return make_glossy(material.reflectance, material.roughness);
+        case MaterialType::pbr:
+            return make_pbr(pbr_params(material));
     }
     return make_lambert(material.reflectance);
 }

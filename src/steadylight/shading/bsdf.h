@@ -53,9 +53,9 @@ public:
 struct PbrParams {
     Rgb base{0.8f, 0.8f, 0.8f};  // base colour: the diffuse albedo, and a metal's normal-incidence Fresnel
     float metallic = 0;
-    float roughness = 0.5f;      // alpha = roughness^2
-    float f0 = 0.04f;            // the coat's normal-incidence Fresnel, from pbr_f0()
-    float specular = 1;          // scales the coat's whole Fresnel (KHR_materials_specular)
+    float roughness = 0.5f;  // alpha = roughness^2
+    float f0 = 0.04f;        // the coat's normal-incidence Fresnel, from pbr_f0()
+    float specular = 1;      // scales the coat's whole Fresnel (KHR_materials_specular)
 };
 
 std::unique_ptr<Bsdf> make_lambert(Rgb reflectance);

@@ -209,8 +209,8 @@ TEST(Bsdf, GlossySamplesFollowTheirPdf) {
                 const std::optional<BsdfSample> bs = glossy->sample(wo, u, rng.next_float(), TransportMode::radiance);
                 return bs ? std::optional(bs->wi) : std::nullopt;
             };
-            const testing::Chi2 chi2 = chi2_test(sample, [&](Vec3 wi) { return glossy->pdf(wo, wi); }, -1, 16, 32,
-                                                 200'000, 11);
+            const testing::Chi2 chi2 = chi2_test(
+                sample, [&](Vec3 wi) { return glossy->pdf(wo, wi); }, -1, 16, 32, 200'000, 11);
             ASSERT_GT(chi2.dof, 30);
             EXPECT_LT(chi2.statistic, chi2_bound(chi2.dof))
                 << "roughness " << roughness << ", cos theta " << cos_theta << ", dof " << chi2.dof;

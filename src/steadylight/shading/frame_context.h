@@ -22,7 +22,8 @@ struct FrameContext {
     const RayTracer& tracer;
     const LightSet& lights;
     const Bsdfs& bsdfs;
-    const std::vector<MirrorPlane>& mirrors;  // the flat static mirrors, whose images of the lights glossy surfaces sample
+    const std::vector<MirrorPlane>&
+        mirrors;  // the flat static mirrors, whose images of the lights glossy surfaces sample
 
     const Bsdf& bsdf_of(int object) const { return *bsdfs[size_t(scene.object(object).material)]; }
 };

@@ -14,13 +14,9 @@ public:
     bool is_diffuse() const override { return true; }
     Rgb diffuse_reflectance(Vec3) const override { return m_reflectance; }
 
-    Rgb eval(Vec3 wo, Vec3 wi) const override {
-        return wo.z * wi.z > 0 ? m_reflectance * inv_pi : Rgb{};
-    }
+    Rgb eval(Vec3 wo, Vec3 wi) const override { return wo.z * wi.z > 0 ? m_reflectance * inv_pi : Rgb{}; }
 
-    float pdf(Vec3 wo, Vec3 wi) const override {
-        return wo.z * wi.z > 0 ? cosine_hemisphere_pdf(std::abs(wi.z)) : 0;
-    }
+    float pdf(Vec3 wo, Vec3 wi) const override { return wo.z * wi.z > 0 ? cosine_hemisphere_pdf(std::abs(wi.z)) : 0; }
 
     std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, float, TransportMode) const override {
         Vec3 wi = sample_cosine_hemisphere(u);

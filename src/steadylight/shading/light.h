@@ -5,8 +5,8 @@
 #pragma once
 
 #include <memory>
-#include <utility>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
@@ -16,12 +16,12 @@ namespace steadylight {
 
 /// A point on a light chosen for a shading point `ref`.
 struct LightSample {
-    Vec3 p;        // on the light
-    Vec3 n;        // the light's normal at p (zero for point lights)
-    Vec3 wi;       // unit direction from ref towards p
+    Vec3 p;   // on the light
+    Vec3 n;   // the light's normal at p (zero for point lights)
+    Vec3 wi;  // unit direction from ref towards p
     float distance = 0;
-    Rgb Li;        // radiance arriving at ref along -wi (for point lights: intensity / distance^2)
-    float pdf = 0; // solid angle at ref (point lights: 1), times the probability of the light
+    Rgb Li;         // radiance arriving at ref along -wi (for point lights: intensity / distance^2)
+    float pdf = 0;  // solid angle at ref (point lights: 1), times the probability of the light
     bool is_delta = false;
 };
 
@@ -29,9 +29,9 @@ struct LightSample {
 /// spreads the light's power over the N photons emitted.
 struct EmissionSample {
     Vec3 p;
-    Vec3 n;         // the emitting surface's normal on the side the photon leaves (zero for point lights)
-    Vec3 d;         // unit direction
-    Rgb power;      // Le cos / (pdf_position pdf_direction), divided by the light's selection probability
+    Vec3 n;     // the emitting surface's normal on the side the photon leaves (zero for point lights)
+    Vec3 d;     // unit direction
+    Rgb power;  // Le cos / (pdf_position pdf_direction), divided by the light's selection probability
 };
 
 /// Where a photon leaves a light before its direction is chosen (for photons aimed at targets).
@@ -97,7 +97,9 @@ public:
     /// \brief Picks a light in proportion to power with `u_select` and a point on it; the photon's
     /// direction is the caller's (power = emitted_intensity / (pdf of the point and direction)).
     std::optional<EmissionPoint> sample_emission_point(float u_select, Vec2 u_position) const;
-    Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const { return m_lights[at.light]->emitted_intensity(at, d); }
+    Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const {
+        return m_lights[at.light]->emitted_intensity(at, d);
+    }
     /// Every light's bounds(), in the set's order.
     std::vector<BoundingSphere> bounds() const;
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
@@ -105,8 +107,8 @@ public:
 
 private:
     std::vector<std::unique_ptr<Light>> m_lights;
-    std::vector<float> m_cdf;                // over m_lights, by power
-    std::vector<int> m_light_of_object;      // object -> index in m_lights, or -1
+    std::vector<float> m_cdf;            // over m_lights, by power
+    std::vector<int> m_light_of_object;  // object -> index in m_lights, or -1
 
     /// The light `u_select` picks and the probability of picking it.
     std::pair<size_t, float> choose(float u_select) const;

@@ -31,8 +31,7 @@ float area_to_solid_angle(float pdf_area, Vec3 ref, Vec3 p, Vec3 n) {
     return cos_light > 0 ? pdf_area * distance2 / cos_light : 0;
 }
 
-LightSet::LightSet(const Scene& scene, const FrameState& frame)
-    : m_light_of_object(scene.objects().size(), -1) {
+LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_object(scene.objects().size(), -1) {
     for (int object = 0; object < int(scene.objects().size()); ++object) {
         if (is_black(frame.emission[size_t(object)])) continue;
         m_light_of_object[size_t(object)] = int(m_lights.size());
@@ -53,8 +52,8 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame)
 }
 
 std::pair<size_t, float> LightSet::choose(float u_select) const {
-    const size_t i = std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u_select) - m_cdf.begin()),
-                              m_lights.size() - 1);
+    const size_t i =
+        std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u_select) - m_cdf.begin()), m_lights.size() - 1);
     return {i, m_cdf[i] - (i ? m_cdf[i - 1] : 0)};
 }
 
@@ -116,7 +115,8 @@ std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec3 n, Vec2 u) co
     for (size_t i = 0; i < count; ++i)
         cdf[i] = (sum += (1 - power_share) * cdf[i] / total + power_share * (m_cdf[i] - (i ? m_cdf[i - 1] : 0)));
     cdf[count - 1] = 1;
-    const size_t i = std::min(size_t(std::upper_bound(cdf.begin(), cdf.begin() + long(count), u.x) - cdf.begin()), count - 1);
+    const size_t i =
+        std::min(size_t(std::upper_bound(cdf.begin(), cdf.begin() + long(count), u.x) - cdf.begin()), count - 1);
     const float lo = i ? cdf[i - 1] : 0, p_select = cdf[i] - lo;
     if (!(p_select > 0)) return std::nullopt;
     return sample_chosen(i, lo, p_select, ref, u);

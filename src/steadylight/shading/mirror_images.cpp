@@ -23,7 +23,8 @@ std::optional<MirrorPlane> plane_of(const TriangleMesh& mesh, const Transform& w
     Vec3 normal;
     float largest = 0;
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-        const Vec3 a = points[size_t(mesh.indices[i])], b = points[size_t(mesh.indices[i + 1])], c = points[size_t(mesh.indices[i + 2])];
+        const Vec3 a = points[size_t(mesh.indices[i])], b = points[size_t(mesh.indices[i + 1])],
+                   c = points[size_t(mesh.indices[i + 2])];
         const Vec3 n = cross(b - a, c - a);
         if (length(n) > largest) largest = length(n), normal = n;
     }
@@ -45,7 +46,8 @@ std::vector<MirrorPlane> flat_mirrors(const Scene& scene, const FrameState& fram
     for (const int object : scene.static_objects()) {
         const ObjectDesc& desc = scene.object(object);
         const TriangleMesh* mesh = std::get_if<TriangleMesh>(&desc.geometry);
-        if (!mesh || desc.is_emitter() || scene.desc().materials[size_t(desc.material)].type != MaterialType::mirror) continue;
+        if (!mesh || desc.is_emitter() || scene.desc().materials[size_t(desc.material)].type != MaterialType::mirror)
+            continue;
         if (std::optional<MirrorPlane> plane = plane_of(*mesh, frame.world_from_object[size_t(object)])) {
             plane->object = object;
             mirrors.push_back(*plane);

@@ -18,9 +18,9 @@ TEST(FlatMirrors, OnlyFlatStaticMirrorsAreFoundWherePlaced) {
     const int white = add_material(desc, {});
     const int flat = add_object(desc, make_quad({0, 0, 0}, {0, 2, 0}, {0, 0, 2}), mirror);
     desc.objects[size_t(flat)].placement[0].translation = {3, 0, 0};
-    add_object(desc, make_quad({0, 0, 0}, {2, 0, 0}, {0, 0, 2}), white);   // flat, but not a mirror
-    add_object(desc, Sphere{{0, 1, 0}, 0.5f}, mirror);                     // a mirror, not flat
-    add_object(desc, make_box({0, 1, 0}, {1, 1, 1}), mirror);              // six planes
+    add_object(desc, make_quad({0, 0, 0}, {2, 0, 0}, {0, 0, 2}), white);  // flat, but not a mirror
+    add_object(desc, Sphere{{0, 1, 0}, 0.5f}, mirror);                    // a mirror, not flat
+    add_object(desc, make_box({0, 1, 0}, {1, 1, 1}), mirror);             // six planes
     const int moving = add_object(desc, make_quad({0, 0, 0}, {0, 2, 0}, {0, 0, 2}), mirror);
     desc.objects[size_t(moving)].placement[0].translation_track =
         Track<Vec3>{Interpolation::linear, {0, 1}, {{-3, 0, 0}, {-2, 0, 0}}};
@@ -38,11 +38,13 @@ TEST(FlatMirrors, OnlyFlatStaticMirrorsAreFoundWherePlaced) {
 /// with the light's mirror image (at x = -2, dimmed by the mirror's reflectance) in its place.
 SceneDesc glossy_floor_beside(bool mirror) {
     SceneDesc desc = make_empty_scene({4, 1.5f, 1}, {1, 0, 1}, 8, 8, 30);
-    const int glossy = add_material(desc, {.type = MaterialType::glossy, .reflectance = {0.5f, 0.5f, 0.5f}, .roughness = 0.35f});
+    const int glossy =
+        add_material(desc, {.type = MaterialType::glossy, .reflectance = {0.5f, 0.5f, 0.5f}, .roughness = 0.35f});
     add_object(desc, make_quad({0, 0, -4}, {0, 0, 8}, {4, 0, 0}), glossy);
     const Rgb Le{20, 20, 20};
     const auto light_at = [&](float x, Rgb emission) {
-        add_object(desc, make_quad({x - 0.25f, 2.5f, 0.75f}, {0.5f, 0, 0}, {0, 0, 0.5f}), add_material(desc, {}), emission);
+        add_object(desc, make_quad({x - 0.25f, 2.5f, 0.75f}, {0.5f, 0, 0}, {0, 0, 0.5f}), add_material(desc, {}),
+                   emission);
     };
     light_at(2, Le);
     if (mirror) {

@@ -21,8 +21,7 @@ float ms_fresnel(float f_avg, float e_avg) { return f_avg * f_avg * e_avg / (1 -
 
 class Pbr final : public Bsdf {
 public:
-    Pbr(const PbrParams& p, bool with_base)
-        : m_p(p), m_ggx(p.roughness * p.roughness), m_with_base(with_base) {
+    Pbr(const PbrParams& p, bool with_base) : m_p(p), m_ggx(p.roughness * p.roughness), m_with_base(with_base) {
         m_avg = ggx_average_albedo(p.roughness);
         const float coat_f_avg = p.specular * (p.f0 + (1 - p.f0) / 21);
         m_coat_ms = ms_fresnel(coat_f_avg, m_avg.e);

@@ -36,8 +36,8 @@ TEST(Pbr, WhiteFurnaceHoldsWithinOnePercentAtEveryRoughness) {
             const auto bsdf = make_pbr(p);
             for (const float cos_theta : cos_thetas) {
                 const double e = albedo(*bsdf, direction(cos_theta, 0.3f));
-                EXPECT_NEAR(e, 1.0, 0.01) << (p.metallic ? "metal" : "plastic") << ", roughness " << roughness
-                                          << ", cos theta " << cos_theta;
+                EXPECT_NEAR(e, 1.0, 0.01)
+                    << (p.metallic ? "metal" : "plastic") << ", roughness " << roughness << ", cos theta " << cos_theta;
                 worst = std::max(worst, std::abs(e - 1));
             }
         }
@@ -63,7 +63,8 @@ TEST(Pbr, CoatAlbedoPlusDiffuseReflectanceIsTheWholeAlbedo) {
             const Vec3 wo = direction(cos_theta, 0.3f);
             ASSERT_TRUE(bsdf->is_diffuse());
             const double whole = albedo(*bsdf, wo, 128);
-            const double split = albedo(*bsdf->non_diffuse_part(), wo, 128) + max_component(bsdf->diffuse_reflectance(wo));
+            const double split =
+                albedo(*bsdf->non_diffuse_part(), wo, 128) + max_component(bsdf->diffuse_reflectance(wo));
             EXPECT_NEAR(split, whole, 0.01) << "roughness " << roughness << ", cos theta " << cos_theta;
         }
 }
@@ -88,7 +89,8 @@ TEST(Pbr, SampleWeightIsEvalTimesCosineOverPdf) {
         const auto bsdf = make_pbr(p);
         for (int i = 0; i < 2000; ++i) {
             const Vec3 wo = direction(1 - 2 * rng.next_float(), 2 * pi * rng.next_float());
-            const std::optional<BsdfSample> s = bsdf->sample(wo, rng.next_vec2(), rng.next_float(), TransportMode::radiance);
+            const std::optional<BsdfSample> s =
+                bsdf->sample(wo, rng.next_vec2(), rng.next_float(), TransportMode::radiance);
             if (!s) continue;
             EXPECT_GT(s->wi.z * wo.z, 0.0f);
             EXPECT_NEAR(s->pdf, bsdf->pdf(wo, s->wi), 1e-3f * s->pdf);

@@ -111,7 +111,10 @@ const GlassAlbedo& glass_albedo(float ior) {
 class RoughDielectric final : public Bsdf {
 public:
     RoughDielectric(float ior, float roughness, Rgb transmittance)
-        : m_ior(ior), m_roughness(roughness), m_ggx(roughness * roughness), m_transmittance(transmittance),
+        : m_ior(ior),
+          m_roughness(roughness),
+          m_ggx(roughness * roughness),
+          m_transmittance(transmittance),
           m_albedo(glass_albedo(ior)) {
         const AlbedoTable::Channels average = m_albedo.table.average(roughness);
         m_one_minus_average = {std::max(1 - average[0], 1e-6f), std::max(1 - average[1], 1e-6f)};

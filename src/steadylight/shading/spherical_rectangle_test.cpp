@@ -45,7 +45,8 @@ TEST(SphericalRectangle, SamplesAreUniformInSolidAngle) {
         int inside = 0;
         for (int i = 0; i < n; ++i) {
             const Vec3 p = seen.sample(rng.next_vec2()) - panel.corner;
-            const float s = dot(p, panel.edge_u) / length2(panel.edge_u), t = dot(p, panel.edge_v) / length2(panel.edge_v);
+            const float s = dot(p, panel.edge_u) / length2(panel.edge_u),
+                        t = dot(p, panel.edge_v) / length2(panel.edge_v);
             ASSERT_TRUE(s >= -1e-4f && s <= 1 + 1e-4f && t >= -1e-4f && t <= 1 + 1e-4f) << s << " " << t;
             ASSERT_NEAR(dot(p, normalize(cross(panel.edge_u, panel.edge_v))), 0, 1e-4f);
             inside += s <= 0.3f && t <= 0.6f;

@@ -15,8 +15,8 @@ void set_triangle_normals(SurfacePoint& sp, const TriangleMesh& mesh, const Tran
     sp.ns = sp.ng;
     if (mesh.normals.empty()) return;
     const float w0 = 1 - hit.u - hit.v;
-    const Vec3 n_object = mesh.normals[size_t(i0)] * w0 + mesh.normals[size_t(i1)] * hit.u +
-                          mesh.normals[size_t(i2)] * hit.v;
+    const Vec3 n_object =
+        mesh.normals[size_t(i0)] * w0 + mesh.normals[size_t(i1)] * hit.u + mesh.normals[size_t(i2)] * hit.v;
     const Vec3 ns = world_from_object.normal(n_object);
     if (length2(ns) == 0 || !is_finite(ns)) return;
     sp.ns = normalize(ns);
@@ -71,7 +71,8 @@ SurfaceBsdf bsdf_at(const FrameContext& context, const SurfacePoint& sp) {
     const ObjectDesc& object = context.scene.object(sp.object);
     const MaterialDesc& m = context.scene.desc().materials[size_t(object.material)];
     const auto* mesh = std::get_if<TriangleMesh>(&object.geometry);
-    const bool varies = mesh && (m.base_color_texture.is_set() || m.metallic_roughness_texture.is_set() || !mesh->colors.empty());
+    const bool varies =
+        mesh && (m.base_color_texture.is_set() || m.metallic_roughness_texture.is_set() || !mesh->colors.empty());
     if (!varies || (m.type != MaterialType::pbr && m.type != MaterialType::lambert))
         return SurfaceBsdf(context.bsdf_of(sp.object));
     const Rgba base = base_color_at(context.scene.desc(), m, sp.attributes);
@@ -90,7 +91,8 @@ Rgb volume_transmittance(const FrameContext& context, const SurfacePoint& sp, Ve
     const Rgb sigma = context.scene.desc().materials[size_t(context.scene.object(sp.object).material)].absorption();
     if (is_black(sigma)) return {1, 1, 1};
     const float length_travelled = distance * length(d);
-    return {std::exp(-sigma.r * length_travelled), std::exp(-sigma.g * length_travelled), std::exp(-sigma.b * length_travelled)};
+    return {std::exp(-sigma.r * length_travelled), std::exp(-sigma.g * length_travelled),
+            std::exp(-sigma.b * length_travelled)};
 }
 
 Rgb emitted_radiance_at(const FrameContext& context, const SurfacePoint& sp, Vec3 w) {

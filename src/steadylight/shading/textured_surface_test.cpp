@@ -31,7 +31,9 @@ SceneDesc quad_with_texture(MaterialDesc material, TextureImage image) {
 }
 
 MaterialDesc masked(AlphaMode mode) {
-    return {.type = MaterialType::pbr, .reflectance = {1, 1, 1}, .alpha_mode = mode,
+    return {.type = MaterialType::pbr,
+            .reflectance = {1, 1, 1},
+            .alpha_mode = mode,
             .base_color_texture = {.image = 0, .filter = TextureFilter::nearest}};
 }
 
@@ -54,7 +56,8 @@ TEST(TexturedSurface, AlphaMaskCutsHolesForEveryRay) {
 
 // The base colour texture multiplies the base colour factor and vertex colours, sRGB decoded.
 TEST(TexturedSurface, BaseColourIsFactorTimesTextureTimesVertexColour) {
-    SceneDesc desc = quad_with_texture({.type = MaterialType::pbr, .reflectance = {0.5f, 1, 1},
+    SceneDesc desc = quad_with_texture({.type = MaterialType::pbr,
+                                        .reflectance = {0.5f, 1, 1},
                                         .base_color_texture = {.image = 0, .filter = TextureFilter::nearest}},
                                        {.name = "grey", .width = 1, .height = 1, .rgba = {128, 255, 255, 255}});
     auto& mesh = std::get<TriangleMesh>(desc.objects[0].geometry);
@@ -70,7 +73,8 @@ TEST(TexturedSurface, BaseColourIsFactorTimesTextureTimesVertexColour) {
 TEST(TexturedSurface, NormalMapTiltsTheBsdfFrameNotTheInterpolatedNormal) {
     const uint8_t x = uint8_t(std::lround(255 * (0.5 + 0.5 * std::sqrt(0.5)))), mid = 128;
     MaterialDesc material{.type = MaterialType::pbr, .normal_texture = {.image = 0, .filter = TextureFilter::nearest}};
-    SceneDesc desc = quad_with_texture(material, {.name = "normals", .width = 1, .height = 1, .rgba = {x, mid, x, 255}});
+    SceneDesc desc =
+        quad_with_texture(material, {.name = "normals", .width = 1, .height = 1, .rgba = {x, mid, x, 255}});
     auto& mesh = std::get<TriangleMesh>(desc.objects[0].geometry);
     generate_tangents(mesh, 0);
     const Scene scene(std::move(desc));
@@ -90,10 +94,11 @@ TEST(TexturedSurface, NormalMapTiltsTheBsdfFrameNotTheInterpolatedNormal) {
 // An emissive texture tints the emission where a ray meets the light and where a light sample
 // lands: the black half of a black-and-white light emits nothing.
 TEST(TexturedSurface, EmissiveTextureTintsTheLight) {
-    MaterialDesc material{.type = MaterialType::pbr, .reflectance = {0, 0, 0},
+    MaterialDesc material{.type = MaterialType::pbr,
+                          .reflectance = {0, 0, 0},
                           .emissive_texture = {.image = 0, .filter = TextureFilter::nearest}};
-    SceneDesc desc = quad_with_texture(material, {.name = "half", .width = 2, .height = 1,
-                                                  .rgba = {255, 255, 255, 255, 0, 0, 0, 255}});
+    SceneDesc desc = quad_with_texture(
+        material, {.name = "half", .width = 2, .height = 1, .rgba = {255, 255, 255, 255, 0, 0, 0, 255}});
     desc.objects[0].emission = {2, 2, 2};
     const Scene scene(std::move(desc));
     const PreparedFrame prepared(scene, 0);
@@ -108,8 +113,12 @@ TEST(TexturedSurface, EmissiveTextureTintsTheLight) {
     // Light samples seen from above: Li is 2 or 0 as the point lands on the white or black half.
     int white = 0, black = 0;
     for (int i = 0; i < 64; ++i) {
-        const std::optional<LightSample> s = context.lights.sample({0, 1, 0}, 0.5f, {(float(i % 8) + 0.5f) / 8, (float(i / 8) + 0.5f) / 8});
-        if (!s) { ++black; continue; }  // a black sample is no sample
+        const std::optional<LightSample> s =
+            context.lights.sample({0, 1, 0}, 0.5f, {(float(i % 8) + 0.5f) / 8, (float(i / 8) + 0.5f) / 8});
+        if (!s) {
+            ++black;
+            continue;
+        }  // a black sample is no sample
         EXPECT_NEAR(s->Li.g, 2.0f, 1e-6f);
         EXPECT_LT(s->p.x, 0.0f);
         ++white;

@@ -7,8 +7,7 @@ namespace steadylight {
 namespace {
 
 void on_embree_error(void*, RTCError code, const char* message) {
-    throw std::runtime_error("Embree error " + std::to_string(int(code)) + ": " +
-                             (message ? message : "(no message)"));
+    throw std::runtime_error("Embree error " + std::to_string(int(code)) + ": " + (message ? message : "(no message)"));
 }
 
 struct Device {

@@ -1,8 +1,8 @@
 #include "steadylight/trace/ray_tracer.h"
 
 #include <cmath>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 #include "steadylight/scene/mesh_attributes.h"
 #include "steadylight/trace/embree_device.h"
@@ -36,10 +36,14 @@ constexpr unsigned dynamic_glass_mask = 8u;
 
 unsigned ray_mask(Visibility visibility) {
     switch (visibility) {
-        case Visibility::everything: return ~0u;
-        case Visibility::static_only: return static_mask | static_glass_mask;
-        case Visibility::opaque: return static_mask | dynamic_mask;
-        case Visibility::static_opaque: return static_mask;
+        case Visibility::everything:
+            return ~0u;
+        case Visibility::static_only:
+            return static_mask | static_glass_mask;
+        case Visibility::opaque:
+            return static_mask | dynamic_mask;
+        case Visibility::static_opaque:
+            return static_mask;
     }
     return ~0u;
 }
@@ -54,24 +58,24 @@ bool is_glass(const Scene& scene, int object) {
 
 RTCGeometry make_triangle_geometry(const TriangleMesh& mesh, const Transform& to_space) {
     RTCGeometry geometry = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), mesh.positions.size()));
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
         const Vec3 p = to_space.point(mesh.positions[i]);
         vertices[3 * i] = p.x;
         vertices[3 * i + 1] = p.y;
         vertices[3 * i + 2] = p.z;
     }
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.indices.size() / 3));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                   3 * sizeof(unsigned), mesh.indices.size() / 3));
     for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = unsigned(mesh.indices[i]);
     return geometry;
 }
 
 RTCGeometry make_sphere_geometry(Vec3 center, float radius) {
     RTCGeometry geometry = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
     v[0] = center.x;
     v[1] = center.y;
     v[2] = center.z;
@@ -93,7 +97,8 @@ std::optional<float> uniform_scale(const Transform& t) {
 
 /// The geometry placed in world space, or nullptr for a sphere that is not scaled uniformly.
 RTCGeometry make_world_geometry(const Geometry& geometry, const Transform& world_from_object) {
-    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) return make_triangle_geometry(*mesh, world_from_object);
+    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry))
+        return make_triangle_geometry(*mesh, world_from_object);
     const Sphere& sphere = std::get<Sphere>(geometry);
     const std::optional<float> scale = uniform_scale(world_from_object);
     if (!scale) return nullptr;
@@ -143,7 +148,8 @@ BoundingSphere object_bounds(const Geometry& geometry) {
 BoundingSphere placed_bounds(const BoundingSphere& bounds, const Transform& t) {
     if (bounds.empty()) return bounds;
     float scale = 0;
-    for (const Vec3 axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}) scale = std::max(scale, length(t.vector(axis)));
+    for (const Vec3 axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}})
+        scale = std::max(scale, length(t.vector(axis)));
     const Vec3 center = t.point(bounds.center);
     const float radius = bounds.radius * scale;
     return {center, radius * 1.0001f + ray_epsilon(max(-center, center) + Vec3{1, 1, 1} * radius)};
@@ -177,7 +183,8 @@ RTCScene build_flat_embree_scene(const Scene& scene, const FrameState& frame) {
     RTCScene flat = rtcNewScene(embree_device());
     rtcSetSceneBuildQuality(flat, RTC_BUILD_QUALITY_HIGH);
     for (int object = 0; object < int(scene.objects().size()); ++object) {
-        const RTCGeometry g = make_world_geometry(scene.object(object).geometry, frame.world_from_object[size_t(object)]);
+        const RTCGeometry g =
+            make_world_geometry(scene.object(object).geometry, frame.world_from_object[size_t(object)]);
         if (!g) throw std::runtime_error("build_flat_embree_scene: unevenly scaled sphere");
         attach(flat, g);
     }
@@ -220,7 +227,8 @@ void RayTracer::add_instanced_object(int object, unsigned mask) {
         attach_alpha_test(g, object);
         attach(object_scene, g);
     } else {
-        attach(object_scene, make_sphere_geometry(std::get<Sphere>(geometry).center, std::get<Sphere>(geometry).radius));
+        attach(object_scene,
+               make_sphere_geometry(std::get<Sphere>(geometry).center, std::get<Sphere>(geometry).radius));
     }
     rtcCommitScene(object_scene);
     m_object_scenes[size_t(object)] = object_scene;
@@ -291,9 +299,8 @@ std::optional<Hit> RayTracer::intersect(const Ray& ray, Visibility visibility) c
     hit.primitive = int(rayhit.hit.primID);
     hit.u = rayhit.hit.u;
     hit.v = rayhit.hit.v;
-    hit.object = rayhit.hit.instID[0] != RTC_INVALID_GEOMETRY_ID
-                     ? m_instance_object[rayhit.hit.instID[0]]
-                     : m_static_geometry_object[rayhit.hit.geomID];
+    hit.object = rayhit.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? m_instance_object[rayhit.hit.instID[0]]
+                                                                 : m_static_geometry_object[rayhit.hit.geomID];
     return hit;
 }
 

@@ -79,12 +79,12 @@ private:
     RTCScene m_static_scene = nullptr;
     RTCScene m_instance_scene = nullptr;  // dynamic objects, and static ones that cannot be baked
     std::vector<RTCScene> m_object_scenes;
-    std::vector<int> m_static_geometry_object;    // static scene geomID -> object
-    std::vector<int> m_instance_object;           // instance scene geomID -> object
+    std::vector<int> m_static_geometry_object;  // static scene geomID -> object
+    std::vector<int> m_instance_object;         // instance scene geomID -> object
     bool m_has_static_instances = false;
     Vec3 m_instance_bounds_lo, m_instance_bounds_hi;  // of the instance scene at this frame; empty if none
-    std::vector<BoundingSphere> m_object_bounds;   // per object, in its own space (instanced objects only)
-    std::vector<BoundingSphere> m_dynamic_bounds;  // the dynamic objects' at this frame
+    std::vector<BoundingSphere> m_object_bounds;      // per object, in its own space (instanced objects only)
+    std::vector<BoundingSphere> m_dynamic_bounds;     // the dynamic objects' at this frame
 };
 
 /// One flat Embree scene holding every object placed as at `frame`, for the benchmark that

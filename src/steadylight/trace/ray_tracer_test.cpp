@@ -54,7 +54,7 @@ TEST(RayTracer, StaticOnlyRaysPassThroughDynamicObjects) {
 // Opaque-only rays pass through glass, static or moving, and meet everything else.
 TEST(RayTracer, OpaqueOnlyRaysPassThroughGlass) {
     const int glass_material = 1;  // added after floor_and_moving_sphere's white
-    {  // a static glass block over the moving (opaque) sphere
+    {                              // a static glass block over the moving (opaque) sphere
         SceneDesc desc = floor_and_moving_sphere();
         ASSERT_EQ(add_material(desc, {.type = MaterialType::dielectric}), glass_material);
         add_object(desc, make_box({0, 5, 0}, {1, 1, 1}), glass_material);
