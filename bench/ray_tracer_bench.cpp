@@ -43,7 +43,7 @@ struct Fixture {
             const std::optional<Hit> hit = tracer.intersect(ray);
             if (!hit) continue;
             const SurfacePoint sp = make_surface_point(scene, frame, ray, *hit);
-            const Frame local = Frame::from_normal(dot(sp.ng, ray.d) < 0 ? sp.ng : -sp.ng);
+            const OrthonormalBasis local = OrthonormalBasis::from_normal(dot(sp.ng, ray.d) < 0 ? sp.ng : -sp.ng);
             const Vec3 d = local.to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}));
             diffuse_rays.push_back(spawn_ray(sp.p, sp.ng, d));
         }

@@ -65,11 +65,11 @@ inline Vec3 lerp(Vec3 a, Vec3 b, float t) { return a * (1 - t) + b * t; }
 constexpr Vec3 reflect(Vec3 wo, Vec3 n) { return 2.0f * dot(wo, n) * n - wo; }
 
 /// An orthonormal basis around a unit normal (Duff et al. 2017, "Building an orthonormal basis,
-/// revisited"). `to_local`/`to_world` map between world space and the frame where n = +z.
-struct Frame {
+/// revisited"). `to_local`/`to_world` map between world space and the basis where n = +z.
+struct OrthonormalBasis {
     Vec3 s, t, n;
 
-    static Frame from_normal(Vec3 n) {
+    static OrthonormalBasis from_normal(Vec3 n) {
         const float sign = std::copysign(1.0f, n.z);
         const float a = -1.0f / (sign + n.z);
         const float b = n.x * n.y * a;

@@ -109,8 +109,8 @@ Gradient translational_gradient(const std::vector<GatherHit>& hits, int M, int N
 }
 
 /// Turns each channel's local gradient into world space.
-Gradient to_world(const Frame& frame, const Gradient& local) {
-    return {frame.to_world(local[0]), frame.to_world(local[1]), frame.to_world(local[2])};
+Gradient to_world(const OrthonormalBasis& basis, const Gradient& local) {
+    return {basis.to_world(local[0]), basis.to_world(local[1]), basis.to_world(local[2])};
 }
 
 }  // namespace
@@ -138,11 +138,11 @@ GatherResult final_gather(Vec3 p, Vec3 n, Vec3 ng, const std::vector<Vec3>& dire
                           const GatherRadiance& radiance) {
     const int M = settings.theta_strata, N = settings.phi_strata;
     SL_CHECK(M > 0 && N > 0 && directions.size() == size_t(M * N));
-    const Frame frame = Frame::from_normal(n);
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(n);
 
     // Trace one ray per stratum.
     std::vector<GatherHit> hits(directions.size());
-    for (size_t i = 0; i < directions.size(); ++i) hits[i] = radiance(spawn_ray(p, ng, frame.to_world(directions[i])));
+    for (size_t i = 0; i < directions.size(); ++i) hits[i] = radiance(spawn_ray(p, ng, basis.to_world(directions[i])));
 
     // Sum the radiances (equal projected solid angle per stratum) and the reciprocal distances.
     GatherResult result;
@@ -161,8 +161,8 @@ GatherResult final_gather(Vec3 p, Vec3 n, Vec3 ng, const std::vector<Vec3>& dire
     record.n = n;
     record.E = sum_L * (pi / float(M * N));
     record.radius = sum_inverse_distance > 0 ? float(M * N) / sum_inverse_distance : infinity;
-    record.rotational_gradient = to_world(frame, rotational_gradient(hits, M, N));
-    record.translational_gradient = to_world(frame, translational_gradient(hits, M, N));
+    record.rotational_gradient = to_world(basis, rotational_gradient(hits, M, N));
+    record.translational_gradient = to_world(basis, translational_gradient(hits, M, N));
     return result;
 }
 

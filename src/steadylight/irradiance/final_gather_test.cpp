@@ -14,7 +14,7 @@ const Vec3 tilted_n = normalize(Vec3{0.3f, -0.5f, 0.8f});
 constexpr Vec3 gather_p{0.5f, -1.0f, 0.25f};
 
 /// A unit vector in the tangent plane of `n`.
-Vec3 tangent_of(Vec3 n) { return Frame::from_normal(n).s; }
+Vec3 tangent_of(Vec3 n) { return OrthonormalBasis::from_normal(n).s; }
 
 GatherResult gather(const GatherRadiance& radiance, Vec3 n = tilted_n, Vec3 p = gather_p,
                     GatherSettings settings = {}) {
@@ -68,7 +68,7 @@ TEST(FinalGather, RaysLeaveAlongTheDirectionsTurnedIntoTheNormalsFrame) {
     ASSERT_EQ(result.rays, settings.theta_strata * settings.phi_strata);
     ASSERT_EQ(rays.size(), directions.size());
     for (size_t i = 0; i < rays.size(); ++i) {
-        const Ray want = spawn_ray(gather_p, ng, Frame::from_normal(tilted_n).to_world(directions[i]));
+        const Ray want = spawn_ray(gather_p, ng, OrthonormalBasis::from_normal(tilted_n).to_world(directions[i]));
         EXPECT_EQ(rays[i].o, want.o);
         EXPECT_EQ(rays[i].d, want.d);
     }
@@ -161,12 +161,12 @@ TEST(FinalGather, RotationalGradientOfLinearRadianceIsTwoPiOverThreeNCrossB) {
 
 TEST(FinalGather, RotationalGradientPredictsTheIrradianceOfATurnedNormal) {
     // Each channel's sky brightens or darkens towards the side n turns to, by different amounts.
-    const Frame frame = Frame::from_normal(tilted_n);
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(tilted_n);
     const Rgb a{1.0f, 1.0f, 1.0f};
-    const std::array<Vec3, 3> b{frame.to_world({0.8f, 0.0f, 0.1f}), frame.to_world({-0.5f, 0.3f, 0.0f}),
-                                frame.to_world({0.3f, 0.6f, -0.2f})};
+    const std::array<Vec3, 3> b{basis.to_world({0.8f, 0.0f, 0.1f}), basis.to_world({-0.5f, 0.3f, 0.0f}),
+                                basis.to_world({0.3f, 0.6f, -0.2f})};
     const GatherResult result = gather(linear_sky(a, b));
-    const Vec3 turned = normalize(tilted_n + 0.1f * frame.s);
+    const Vec3 turned = normalize(tilted_n + 0.1f * basis.s);
     const Rgb want = linear_radiance_E(a, b, turned);
     for (int c = 0; c < 3; ++c) {
         const float constant = result.record.E[c];

@@ -46,12 +46,12 @@ private:
 };
 
 /// Direct light from one sampled light, weighted against BSDF sampling by MIS.
-Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
-                    Pcg32& rng, PathCounts& counts) {
+Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const OrthonormalBasis& basis,
+                    const Bsdf& bsdf, Vec3 wo, Pcg32& rng, PathCounts& counts) {
     const float u_select = rng.next_float();
     const std::optional<LightSample> light = context.lights.sample(sp.p, u_select, rng.next_vec2());
     if (!light) return {};
-    const Vec3 wi = frame.to_local(light->wi);
+    const Vec3 wi = basis.to_local(light->wi);
     const Rgb f = bsdf.eval(wo, wi);
     if (is_black(f)) return {};
     ++counts.rays;
@@ -109,9 +109,9 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         // Sample direct light, then continue the path by sampling the BSDF.
         const SurfaceBsdf surface_bsdf = bsdf_at(context, sp);
         const Bsdf& bsdf = *surface_bsdf;
-        const Frame frame = Frame::from_normal(sp.nm);
-        const Vec3 wo = frame.to_local(-ray.d);
-        if (!bsdf.is_delta()) L += beta * estimate_direct(context, sp, frame, bsdf, wo, rng, counts);
+        const OrthonormalBasis basis = OrthonormalBasis::from_normal(sp.nm);
+        const Vec3 wo = basis.to_local(-ray.d);
+        if (!bsdf.is_delta()) L += beta * estimate_direct(context, sp, basis, bsdf, wo, rng, counts);
         const float u_lobe = rng.next_float();
         const std::optional<BsdfSample> bs = bsdf.sample(wo, rng.next_vec2(), u_lobe, TransportMode::radiance);
         if (!bs) break;
@@ -120,7 +120,7 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         specular_bounce = bs->is_delta;
         bsdf_pdf = bs->pdf;
         previous_p = sp.p;
-        ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+        ray = spawn_ray(sp.p, sp.ng, basis.to_world(bs->wi));
 
         // Russian roulette: end low-throughput paths, reweighting the survivors.
         if (depth + 1 >= settings.roulette_start_depth) {

@@ -54,7 +54,7 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
         if (bsdf->is_diffuse()) {
             const SurfacePoint facing = face_towards(surface, ray.d);
             const std::optional<Rgb> E = photons.lookup(surface.p, facing.ng, max_radius);
-            const Vec3 wo = Frame::from_normal(facing.nm).to_local(-ray.d);
+            const Vec3 wo = OrthonormalBasis::from_normal(facing.nm).to_local(-ray.d);
             if (E) result.L += beta * bsdf->diffuse_reflectance(wo) * *E * inv_pi;
             // Go on along the coat's reflection, kept by Russian roulette (it is a few percent).
             coat = bsdf->non_diffuse_part();

@@ -79,14 +79,14 @@ TEST(RecordCorrection, SharpChangeIsKeptAtItsCentre) {
 /// The probes of a disc centred on the edge x = 0 of the floor x > 0, turned by `turn` (as
 /// surface_coverage.cpp places them, at the middle of each ring's area).
 DiscProbes probes_on_the_floor_beyond_x_0(float turn) {
-    const Frame frame = Frame::from_normal(up);
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(up);
     DiscProbes probes;
     probes.reached = 0;
     probes.turn = turn;
     for (int ring = 0; ring < DiscProbes::rings; ++ring)
         for (int j = 0; j < DiscProbes::sectors; ++j) {
             const float phi = probes.angle(ring, j);
-            if (frame.to_world({std::cos(phi), std::sin(phi), 0}).x > 0)
+            if (basis.to_world({std::cos(phi), std::sin(phi), 0}).x > 0)
                 probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
         }
     return probes;

@@ -84,13 +84,13 @@ public:
 private:
     Components shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, Emission emission,
                          const PixelSample& pixel, const LightStrata& strata, Pcg32& rng) const;
-    Rgb direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+    Rgb direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
                      const LightStrata& strata) const;
-    Rgb light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+    Rgb light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
                          const LightStrata& strata, PixelTrace* trace) const;
     bool is_flat_mirror(int object) const;
     Rgb trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const;
-    void shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
+    void shade_diffuse(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo, int depth,
                        const PixelSample& pixel, const LightStrata& strata, Components& c) const;
 
     const FrameContext& m_context;
@@ -102,7 +102,7 @@ private:
     mutable std::atomic<long> m_caustic_ns = 0;
 };
 
-Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+Rgb Shader::direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
                          const LightStrata& strata) const {
     Rgb sum;
     for (int s = 0; s < m_settings.direct_samples; ++s) {
@@ -111,7 +111,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
         // Lights are chosen by what they could give this point (no MIS here to agree with).
         const std::optional<LightSample> light = m_context.lights.sample_reusing(sp.p, sp.ns, strata.sample(s));
         if (!light) continue;
-        const Vec3 wi = frame.to_local(light->wi);
+        const Vec3 wi = basis.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
         if (is_black(f) || m_context.tracer.occluded(spawn_ray_to(sp.p, sp.ng, light->p), m_visibility)) continue;
         sum += f * light->Li * (std::abs(wi.z) / light->pdf);
@@ -121,7 +121,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const Frame& frame, const Bsdf&
 
 /// Light reaching glossy point `sp` by one reflection in a flat static mirror (mirror_images.h):
 /// the lights sampled as seen from the point's mirror image, with direct_light's strata.
-Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo,
+Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
                              const LightStrata& strata, PixelTrace* trace) const {
     Rgb sum;
     for (const MirrorPlane& mirror : m_context.mirrors) {
@@ -135,7 +135,7 @@ Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const Frame& frame, const B
             // A light behind the mirror's plane has no image on this side.
             if (!light || dot(light->p - mirror.point, mirror.normal) * side <= 0) continue;
             const Vec3 towards_image = mirrored(light->wi);
-            const Vec3 wi = frame.to_local(towards_image);
+            const Vec3 wi = basis.to_local(towards_image);
             const Rgb f = bsdf.eval(wo, wi);
             const float t_plane = side / -dot(towards_image, mirror.normal);
             if (is_black(f) || !(t_plane > 0)) continue;
@@ -161,11 +161,11 @@ bool Shader::is_flat_mirror(int object) const {
                        [object](const MirrorPlane& mirror) { return mirror.object == object; });
 }
 
-void Shader::shade_diffuse(const SurfacePoint& sp, const Frame& frame, const Bsdf& bsdf, Vec3 wo, int depth,
+void Shader::shade_diffuse(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo, int depth,
                            const PixelSample& pixel, const LightStrata& strata, Components& c) const {
     // Textures multiply here, after the cache's interpolation: they are never blurred by it.
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
-    if (!pixel.skip_direct) c.direct += direct_light(sp, frame, bsdf, wo, strata);
+    if (!pixel.skip_direct) c.direct += direct_light(sp, basis, bsdf, wo, strata);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (depth == 0 && pixel.kept) keep_look_up(pixel, bsdf, albedo_over_pi);
     // A diffuse point reads the caustic map, an empty one too: a frame's may not be empty.
@@ -225,8 +225,8 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     const SurfacePoint sp = face_towards(surface, ray.d);
     const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
     const Bsdf& bsdf = *surface_bsdf;
-    const Frame frame = Frame::from_normal(sp.nm);
-    const Vec3 wo = frame.to_local(-ray.d);
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(sp.nm);
+    const Vec3 wo = basis.to_local(-ray.d);
     if (bsdf.is_diffuse()) {
         PixelSample at = pixel;
         // Within a pixel the camera's rays spread over about one footprint; at grazing angles
@@ -234,7 +234,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         at.reach = 2 * m_context.frame.camera.pixel_footprint(hit.t);
         if (depth > 0) at.memo = at.caustic_memo = nullptr;
         if (depth == 0 && pixel.trace) ++pixel.trace->surface_rays;
-        shade_diffuse(sp, frame, bsdf, wo, depth, at, strata, c);
+        shade_diffuse(sp, basis, bsdf, wo, depth, at, strata, c);
         if (const std::unique_ptr<Bsdf> coat = bsdf.non_diffuse_part()) {
             if (pixel.trace) pixel.trace->flags |= PixelTrace::coat;
             c.specular = trace_coat(*coat, surface, ray, rng);
@@ -247,7 +247,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     // it: rough glass tells inside from outside by them (the reflective BSDFs are two-sided).
     // So do the lights' images in flat mirrors.
     if (!bsdf.is_delta() && !pixel.skip_direct) {
-        const Frame own = Frame::from_normal(surface.nm);
+        const OrthonormalBasis own = OrthonormalBasis::from_normal(surface.nm);
         c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata);
         c.direct += light_in_mirrors(sp, own, bsdf, own.to_local(-ray.d), strata, pixel.trace);
     }

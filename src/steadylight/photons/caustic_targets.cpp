@@ -70,7 +70,7 @@ std::optional<AimedDirection> CausticTargets::sample(Vec3 p, Vec2 u) const {
     const float share = cones[chosen].solid_angle / total;
     u.x = std::clamp((u.x - lo) / share, 0.0f, 0x1.fffffep-1f);
     const Cone& cone = cones[chosen];
-    const Vec3 d = normalize(Frame::from_normal(cone.axis).to_world(sample_uniform_cone(u, cone.cos_max)));
+    const Vec3 d = normalize(OrthonormalBasis::from_normal(cone.axis).to_world(sample_uniform_cone(u, cone.cos_max)));
     // At least the chosen cone holds d, whatever rounding says at its rim.
     return AimedDirection{d, std::max(1, cones_holding(cones, d)) / total};
 }

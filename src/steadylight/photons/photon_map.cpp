@@ -91,7 +91,7 @@ Rgb PhotonMap::estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySetti
     const DiscProbes disc = coverage.probes(p, n, r, coverage_lift * r, r, seed);
     if (probes) *probes = disc;
     const bool whole = disc.share() == 1;
-    const Frame frame = Frame::from_normal(n);
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(n);
     const size_t inside = int(neighbours.size()) < settings.k ? neighbours.size() : neighbours.size() - 1;
     Rgb sum;
     for (size_t j = 0; j < inside; ++j) {
@@ -100,7 +100,7 @@ Rgb PhotonMap::estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySetti
         const Vec3 offset = photon.p - p;
         bool untested = dot(offset, n) <= coverage_lift * r;
         if (untested && !whole) {
-            const Vec3 local = frame.to_local(offset);
+            const Vec3 local = basis.to_local(offset);
             untested = disc.reached_cell(local.x, local.y, r2);
         }
         if (untested || coverage.reaches(p, n, r, photon.p)) sum += photon.power;
@@ -219,7 +219,7 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
             const float distance = std::sqrt(nb.distance2);
             bool untested = nb.distance2 < radius * radius && dot(photon.p - p, n) <= coverage_lift * distance;
             if (untested && disc.share() < 1) {
-                const Vec3 local = Frame::from_normal(photon.n).to_local(p - photon.p);
+                const Vec3 local = OrthonormalBasis::from_normal(photon.n).to_local(p - photon.p);
                 untested = disc.reached_cell(local.x, local.y, radius * radius);
             }
             if (untested || m_coverage.reaches(p, n, distance, photon.p)) return E;

@@ -39,7 +39,7 @@ inline float coverage_probe_extent(Vec3 p, float r) { return 2 * r + 2 * coverag
 
 /// Which cells of a density estimate's disc the surface under its centre reaches, one probe per
 /// cell (surface_coverage.h): two rings of equal area, eight sectors each, in the disc's frame
-/// (Frame::from_normal of its normal), the sectors turned by `turn` (in sectors) and the outer
+/// (OrthonormalBasis::from_normal of its normal), the sectors turned by `turn` (in sectors) and the outer
 /// ring's by half a sector more. Sector j of a ring is centred on its probe's angle.
 struct DiscProbes {
     static constexpr int rings = 2, sectors = 8;

@@ -177,7 +177,7 @@ TEST(PhotonMap, OnlyThePhotonsTheSurfaceReachesCount) {
     const PhotonMap map = halton_floor_photons(20000, {1e-3f, 0, 0});
     const DensitySettings settings{.k = 50, .max_radius = 0.5f};
     const Vec3 up{0, 1, 0};
-    const Frame frame = Frame::from_normal(up);
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(up);
     Pcg32 rng(3);
     double whole = 0, half = 0, leaking = 0;
     for (int i = 0; i < 400; ++i) {
@@ -185,7 +185,7 @@ TEST(PhotonMap, OnlyThePhotonsTheSurfaceReachesCount) {
         const DiscProbes probes{.reached = 0x0f0f, .turn = rng.next_float()};
         const auto half_disc = [&](Vec3, Vec3, float, float, float, uint64_t) { return probes; };
         const SurfaceCoverage one_half{half_disc, [&](Vec3 c, Vec3, float radius, Vec3 q) {
-                                           const Vec3 local = frame.to_local(q - c);
+                                           const Vec3 local = basis.to_local(q - c);
                                            return probes.reached_cell(local.x, local.y, radius * radius);
                                        }};
         const SurfaceCoverage every_photon{half_disc, [](Vec3, Vec3, float, Vec3) { return true; }};

@@ -94,10 +94,10 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
         // Scatter, or be absorbed (by the surface or the glass behind it): survive with the
         // probability of the scattered power. Always these four numbers, whatever happens next:
         // resumed paths rely on it (photon_walk.h).
-        const Frame frame = Frame::from_normal(sp.nm);
+        const OrthonormalBasis basis = OrthonormalBasis::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
         const std::optional<BsdfSample> bs =
-            bsdf->sample(frame.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe, TransportMode::importance);
+            bsdf->sample(basis.to_local(-path.ray.d), path.sampler.next_vec2(), u_lobe, TransportMode::importance);
         if (!bs) return;
         const Rgb throughput = bs->weight * absorbed;
         const float survive = std::min(1.0f, max_component(throughput));
@@ -106,7 +106,7 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
         // A bounce off a coat's or a metal's glossy lobe keeps a path caustic; one drawn from a
         // diffuse base ends that (docs/materials.md, "The photon method").
         path.specular_path = (path.bounce == 0 || path.specular_path) && !bs->diffuse;
-        path.ray = spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi));
+        path.ray = spawn_ray(sp.p, sp.ng, basis.to_world(bs->wi));
     }
 }
 

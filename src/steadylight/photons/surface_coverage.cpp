@@ -56,7 +56,7 @@ SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibil
         ProbeWorld{context.scene, context.tracer, context.frame, opaque_only(visibility)});
     SurfaceCoverage coverage;
     coverage.probes = [world](Vec3 p, Vec3 n, float radius, float lift_above, float reach, uint64_t seed) {
-        const Frame frame = Frame::from_normal(n);
+        const OrthonormalBasis basis = OrthonormalBasis::from_normal(n);
         const float lift = std::max(lift_above, coverage_min_lift(p));
         const uint64_t bits = hash_ids(seed);
         DiscProbes probes;
@@ -69,7 +69,7 @@ SurfaceCoverage surface_coverage(const FrameContext& context, Visibility visibil
             const float r = radius * std::sqrt((float(ring) + jitter) / DiscProbes::rings);
             for (int j = 0; j < DiscProbes::sectors; ++j) {
                 const float phi = probes.angle(ring, j);
-                const Vec3 q = p + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0});
+                const Vec3 q = p + basis.to_world({r * std::cos(phi), r * std::sin(phi), 0});
                 if (covers(*world, p, n, q, lift, reach))
                     probes.reached |= uint16_t(1u << (ring * DiscProbes::sectors + j));
             }

@@ -116,7 +116,7 @@ public:
             if (back) s.n = -s.n;
         }
         // Cosine-weighted directions: Le cos / (pdf_area pdf_direction) = Le pi A (per side).
-        s.d = Frame::from_normal(s.n).to_world(sample_cosine_hemisphere(u_direction));
+        s.d = OrthonormalBasis::from_normal(s.n).to_world(sample_cosine_hemisphere(u_direction));
         s.power = m_Le * tint * (pi * m_area * sides());
         return s;
     }
@@ -194,7 +194,7 @@ private:
         const float one_minus_cos = u.x * one_minus_cos_max;
         const float cos_theta = 1 - one_minus_cos, sin2_theta = one_minus_cos * (2 - one_minus_cos);
         const float sin_theta = std::sqrt(std::max(0.0f, sin2_theta)), phi = 2 * pi * u.y;
-        const Vec3 wi = Frame::from_normal(to_center / distance)
+        const Vec3 wi = OrthonormalBasis::from_normal(to_center / distance)
                             .to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
         // The nearer hit of ref + t wi: t = d cos - sqrt(R^2 - d^2 sin^2).
         const float t =

@@ -64,13 +64,13 @@ Estimate directional_albedo(const Bsdf& bsdf, Vec3 wo, TransportMode mode, int n
 /// Integral of pdf(wo, .) over the sphere, by the midpoint rule in (theta, phi) around the mirror
 /// direction of wo with theta = pi t^2, so that cells are finest where a glossy lobe peaks.
 double integrate_pdf(const Bsdf& bsdf, Vec3 wo, int n_t = 2000, int n_phi = 128) {
-    const Frame frame = Frame::from_normal(Vec3{-wo.x, -wo.y, wo.z});
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(Vec3{-wo.x, -wo.y, wo.z});
     const double dt = 1.0 / n_t, d_phi = 2 * pi / n_phi;
     double sum = 0;
     for (int i = 0; i < n_t; ++i) {
         const double t = (i + 0.5) * dt, theta = pi * t * t, jacobian = std::sin(theta) * 2 * pi * t;
         for (int j = 0; j < n_phi; ++j) {
-            const Vec3 wi = frame.to_world(direction(float(std::cos(theta)), float((j + 0.5) * d_phi)));
+            const Vec3 wi = basis.to_world(direction(float(std::cos(theta)), float((j + 0.5) * d_phi)));
             sum += bsdf.pdf(wo, wi) * jacobian;
         }
     }

@@ -55,7 +55,7 @@ public:
             return s;
         }
         // Uniform directions in the spot's cone, weighted by its falloff.
-        s.d = Frame::from_normal(m_desc.direction).to_world(sample_uniform_cone(u_direction, m_cos_cone));
+        s.d = OrthonormalBasis::from_normal(m_desc.direction).to_world(sample_uniform_cone(u_direction, m_cos_cone));
         s.power = m_intensity * (falloff(s.d) / uniform_cone_pdf(m_cos_cone));
         return s;
     }

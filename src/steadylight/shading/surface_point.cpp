@@ -109,10 +109,10 @@ Rgb emitted_radiance(const ObjectDesc& object, Rgb Le, Vec3 ng, Vec3 w) {
 
 std::optional<Bounce> sample_bounce(const Bsdf& bsdf, const SurfacePoint& sp, Vec3 d, Vec2 u, float u_lobe,
                                     TransportMode mode) {
-    const Frame frame = Frame::from_normal(sp.nm);
-    const std::optional<BsdfSample> bs = bsdf.sample(frame.to_local(-d), u, u_lobe, mode);
+    const OrthonormalBasis basis = OrthonormalBasis::from_normal(sp.nm);
+    const std::optional<BsdfSample> bs = bsdf.sample(basis.to_local(-d), u, u_lobe, mode);
     if (!bs) return std::nullopt;
-    return Bounce{*bs, spawn_ray(sp.p, sp.ng, frame.to_world(bs->wi))};
+    return Bounce{*bs, spawn_ray(sp.p, sp.ng, basis.to_world(bs->wi))};
 }
 
 }  // namespace steadylight
