@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
                 s.photon_tracing_s, s.global_photons_stored, s.caustic_photons_stored);
     std::printf("  irradiance at photons + cache (gathering)   %7.3f s  (%ld records, %.2fM gather rays)\n", s.cache_s,
                 s.irradiance_records, double(s.gather_rays) / 1e6);
-    std::printf("  shading (direct, look-ups, specular)        %7.3f s  (caustics %.3f s cpu)\n", s.direct_s,
+    std::printf("  shading (direct, look-ups, specular)        %7.3f s  (caustics %.3f s cpu)\n", s.shading_s,
                 s.caustics_s);
     std::printf("  total                                       %7.3f s\n", s.total_s);
     std::printf("  relative RMSE vs reference                  %7.4f\n", photon_rmse);

@@ -39,7 +39,7 @@ setup = "; ".join(re.sub(r"^.*\] ", "", l.strip()) for l in open(log) if "static
 print(f"  wall {wall:.1f} s for {n} frames ({wall / n:.3f} s a frame)")
 print(f"  set-up: {setup}")
 print(f"  per frame: total {secs('total'):.3f} s = photons {secs('photon_tracing'):.3f} + L_y {secs('cache'):.3f} + influence {secs('influence'):.3f}"
-      f" + L_t {secs('correction'):.3f} + shading {secs('direct'):.3f} (caustics {secs('caustics'):.3f} cpu)")
+      f" + L_t {secs('correction'):.3f} + shading {secs('shading'):.3f} (caustics {secs('caustics'):.3f} cpu)")
 total = pix("reused") + pix("looked_up_again") + pix("redone_but_direct") + pix("redone")
 if total:
     print(f"  pixels a frame: reused {pix('reused'):.0f}, looked up again {pix('looked_up_again'):.0f},"

@@ -37,7 +37,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
             return PixelMemo::Values{cached_irradiance(cache, sp, n, fallback.at(pixel.share), fallbacks, gather_rays)};
         })[0];
     };
-    ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
+    ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
         return shade_frame(context, settings.shading, traced.maps.caustic, indirect, [&](const Ray& ray) {
             return gather_from_photons(context, irradiance_photons, max_radius, Visibility::everything, ray).L;
         });

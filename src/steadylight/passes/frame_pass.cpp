@@ -264,12 +264,12 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects.
     stats.gather_rays = built.gather_rays;
     const double planning_s = planning.elapsed_s();
-    ShadedFrame shaded = timed_phase("shading", stats.direct_s, [&] {
+    ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
         return shade_localized(
             context, {static_cache, dynamic_cache, transported, influence, irradiance, photons.caustic, frozen}, photon,
             localized, reuse, stats);
     });
-    stats.direct_s += planning_s;
+    stats.shading_s += planning_s;
     stats.caustics_s = shaded.caustic_cpu_s;
 
     take_common_layers(shaded, out);

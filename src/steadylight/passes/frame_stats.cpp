@@ -29,7 +29,7 @@ void for_each_json_field(Stats& s, Visit&& visit) {
     visit("/seconds/cache", s.cache_s);
     visit("/seconds/influence", s.influence_s);
     visit("/seconds/correction", s.correction_s);
-    visit("/seconds/direct", s.direct_s);
+    visit("/seconds/shading", s.shading_s);
     visit("/seconds/caustics", s.caustics_s);
     visit("/seconds/total", s.total_s);
 }
@@ -56,7 +56,7 @@ void for_each_later_json_field(Stats& s, Visit&& visit) {
 /// Whether the frame ran photon-mapping passes: photons, records, gathers or their phases' time.
 bool has_photon_mapping_figures(const FrameStats& s) {
     return s.global_photons_emitted > 0 || s.caustic_photons_emitted > 0 || s.irradiance_records > 0 ||
-           s.static_records > 0 || s.gather_rays > 0 || s.photon_tracing_s > 0 || s.cache_s > 0 || s.direct_s > 0;
+           s.static_records > 0 || s.gather_rays > 0 || s.photon_tracing_s > 0 || s.cache_s > 0 || s.shading_s > 0;
 }
 
 std::string summarize_photon_mapping(const FrameStats& s) {
@@ -74,7 +74,7 @@ std::string summarize_photon_mapping(const FrameStats& s) {
                         share(s.pixels_reused), share(s.pixels_looked_up_again), share(s.pixels_redone_but_direct),
                         share(s.pixels_redone));
     }
-    return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.direct_s, s.caustics_s);
+    return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.shading_s, s.caustics_s);
 }
 
 /// The path tracer's figures; `s.camera_samples` > 0.
@@ -97,6 +97,13 @@ void to_json(nlohmann::json& json, const FrameStats& s) {
 }
 
 void from_json(const nlohmann::json& json, FrameStats& s) {
+    // Files written before the shading time had a key of its own name it /seconds/direct.
+    const nlohmann::json::json_pointer shading("/seconds/shading"), direct("/seconds/direct");
+    if (!json.contains(shading) && json.contains(direct)) {
+        nlohmann::json renamed = json;
+        renamed[shading] = json.at(direct);
+        return from_json(renamed, s);
+    }
     for_each_json_field(
         s, [&](const char* pointer, auto& value) { json.at(nlohmann::json::json_pointer(pointer)).get_to(value); });
     for_each_later_json_field(s, [&](const char* pointer, auto& value) {

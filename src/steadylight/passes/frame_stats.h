@@ -40,7 +40,7 @@ struct FrameStats {
                                   // the irradiance at photons its gathers read (photon: all, up front)
     double influence_s = 0;       // localized: the influence I of the dynamic objects
     double correction_s = 0;      // localized: correcting the static records by the dynamic map (L_t)
-    double direct_s = 0;          // shading pass: direct light, cache look-ups, specular
+    double shading_s = 0;         // shading pass: direct light, cache look-ups, specular
     double caustics_s = 0;        // caustic estimates (inside the shading pass, summed over threads)
     double total_s = 0;
     long camera_samples = 0;     // path: pixels x samples per pixel

@@ -29,7 +29,7 @@ FrameStats photon_stats() {
     stats.retraced_photon_paths = 1234;
     stats.photon_tracing_s = 0.5;
     stats.cache_s = 1.0;
-    stats.direct_s = 0.75;
+    stats.shading_s = 0.75;
     stats.total_s = 2.25;
     return stats;
 }
@@ -56,6 +56,21 @@ TEST(FrameStats, OlderFileWithoutPathFiguresReadsThemAsZero) {
     EXPECT_EQ(read.retraced_photon_paths, 0);
     EXPECT_EQ(read.irradiance_records, 300);
     EXPECT_EQ(read.total_s, 2.25);
+}
+
+/// The shading time's key was /seconds/direct before it was named for what it holds: such files
+/// still read, the report among their readers.
+TEST(FrameStats, OlderFileWithSecondsDirectReadsItAsTheShadingTime) {
+    const nlohmann::json current = photon_stats();
+    EXPECT_EQ(current.at("seconds").at("shading"), 0.75);
+    EXPECT_FALSE(current.at("seconds").contains("direct"));
+    nlohmann::json older = current;
+    older["seconds"].erase("shading");
+    older["seconds"]["direct"] = 0.5;
+    EXPECT_EQ(older.get<FrameStats>().shading_s, 0.5);
+    nlohmann::json neither = current;
+    neither["seconds"].erase("shading");
+    EXPECT_THROW(neither.get<FrameStats>(), nlohmann::json::exception);
 }
 
 TEST(FrameStats, FieldsOfTheFirstFilesAreStillRequired) {

@@ -44,8 +44,8 @@ FrameStats fake_stats(const std::string& method, int frame) {
     stats.photon_tracing_s = 1.0;
     stats.cache_s = method == "photon" ? 1.5 : 0.05;
     stats.influence_s = method == "photon" ? 0 : 0.1;
-    stats.direct_s = 1.2;
-    stats.total_s = stats.photon_tracing_s + stats.cache_s + stats.influence_s + stats.direct_s;
+    stats.shading_s = 1.2;
+    stats.total_s = stats.photon_tracing_s + stats.cache_s + stats.influence_s + stats.shading_s;
     return stats;
 }
 

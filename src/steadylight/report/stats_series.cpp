@@ -44,7 +44,7 @@ const std::vector<StatsField>& phase_time_fields() {
         {"irradiance cache (L_y)", [](const FrameStats& s) { return s.cache_s; }},
         {"influence", [](const FrameStats& s) { return s.influence_s; }},
         {"L_t correction", [](const FrameStats& s) { return s.correction_s; }},
-        {"shading", [](const FrameStats& s) { return s.direct_s; }},
+        {"shading", [](const FrameStats& s) { return s.shading_s; }},
         {"caustics (cpu)", [](const FrameStats& s) { return s.caustics_s; }},
         {"total", [](const FrameStats& s) { return s.total_s; }},
     };
