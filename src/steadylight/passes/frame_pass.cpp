@@ -94,10 +94,10 @@ void fill_layers(const FrameContext& context, const IrradianceCache& static_cach
 
 /// What the localized method's shading reads at diffuse points.
 struct LocalizedLighting {
-    const IrradianceCache& static_cache;   // for the layer of the static cache's indirect light
-    const IrradianceCache& dynamic_cache;  // L_y
-    const IrradianceCache& transported;    // L_t
-    const InfluenceMap& influence;         // no values: L_t everywhere off the dynamic objects
+    const IrradianceCache& static_cache;     // for the layer of the static cache's indirect light
+    const IrradianceCache& dynamic_cache;    // L_y
+    const IrradianceCache& corrected_cache;  // L_t
+    const InfluenceMap& influence;           // no values: L_t everywhere off the dynamic objects
     const IrradiancePhotons& irradiance;
     const PhotonMap& caustic;
     bool frozen = false;
@@ -114,8 +114,8 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         return lighting.influence.values.empty() ? 0.0f : lighting.influence.at(x, y);
     };
     std::atomic<long> fallbacks = 0, gather_rays = 0;
-    const auto transported = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
-                                 const PixelSample& pixel) {
+    const auto interpolate_or_gather = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
+                                           const PixelSample& pixel) {
         std::atomic<long> gathered = 0, rays = 0;
         const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays);
         if (gathered && pixel.trace) pixel.trace->flags |= PixelTrace::gather;
@@ -127,8 +127,9 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         const float I = on_dynamic ? 0.0f : influence_at(pixel.x, pixel.y);
         const float weight = on_dynamic ? 1.0f : (lighting.frozen ? 0.0f : blend_weight(I, localized));
         const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
-            return PixelMemo::Values{weight > 0 ? transported(lighting.dynamic_cache, sp, n, pixel) : Rgb{},
-                                     weight < 1 ? transported(lighting.transported, sp, n, pixel) : Rgb{}, Rgb{}};
+            return PixelMemo::Values{weight > 0 ? interpolate_or_gather(lighting.dynamic_cache, sp, n, pixel) : Rgb{},
+                                     weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel) : Rgb{},
+                                     Rgb{}};
         });
         if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
         return L_y * weight + L_t * (1 - weight);
@@ -154,8 +155,8 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
             if (i == StaticFrame::no_look_up) continue;
             std::optional<Rgb>& E = L_t[i];
             // Covered, as in the static frame: the corrected records are the static ones, moved nowhere.
-            if (!E) E = lighting.transported.interpolate(look_ups.p[i], look_ups.n[i]);
-            if (!E) E = lighting.transported.interpolate(look_ups.p[i], look_ups.n[i], 2).value();
+            if (!E) E = lighting.corrected_cache.interpolate(look_ups.p[i], look_ups.n[i]);
+            if (!E) E = lighting.corrected_cache.interpolate(look_ups.p[i], look_ups.n[i], 2).value();
             L_i += base.ray_albedo[ray] * *E;
         }
         sums.indirect = sums.extra[L_t_slot] = L_i;
@@ -180,14 +181,14 @@ StaticFrame make_static_frame(const FrameContext& context, const StaticSolution&
     SL_CHECK(paths.irradiance);
     const IrradiancePhotons& irradiance = *paths.irradiance;
     // Built as every frame builds L_t, so that its interpolations are the frame's bit for bit.
-    const IrradianceCache transported = corrected_cache(solution.cache, PhotonMap{}, localized.correction, {});
+    const IrradianceCache corrected_cache = correct_static_cache(solution.cache, PhotonMap{}, localized.correction, {});
     const IrradianceCache no_dynamic_cache(photon.cache);
     const InfluenceMap no_influence;
     StaticFrame out;
     FrameStats stats;
-    shade_localized(context,
-                    {solution.cache, no_dynamic_cache, transported, no_influence, irradiance, paths.caustic.photons},
-                    photon, localized, {.visibility = Visibility::static_only, .keep = &out}, stats);
+    shade_localized(
+        context, {solution.cache, no_dynamic_cache, corrected_cache, no_influence, irradiance, paths.caustic.photons},
+        photon, localized, {.visibility = Visibility::static_only, .keep = &out}, stats);
     return out;
 }
 
@@ -232,14 +233,14 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     // L_t: the static records corrected by the dynamic map.
     const IrradianceCache& static_cache = solution.cache;
     std::vector<uint8_t> changed_records;
-    const IrradianceCache corrected = timed_phase("L_t", stats.correction_s, [&] {
-        return frozen
-                   ? IrradianceCache(photon.cache)
-                   : corrected_cache(static_cache, photons.dynamic, localized.correction,
-                                     solution.correction_coverage->probes(context, static_cache, localized.correction),
-                                     &changed_records);
+    const IrradianceCache own_corrected_cache = timed_phase("L_t", stats.correction_s, [&] {
+        return frozen ? IrradianceCache(photon.cache)
+                      : correct_static_cache(
+                            static_cache, photons.dynamic, localized.correction,
+                            solution.correction_coverage->probes(context, static_cache, localized.correction),
+                            &changed_records);
     });
-    const IrradianceCache& transported = frozen ? static_cache : corrected;
+    const IrradianceCache& corrected_cache = frozen ? static_cache : own_corrected_cache;
 
     // With a static frame, which pixels to shade again (pixel_reuse.h): part of the shading phase.
     PixelReuse reuse;
@@ -266,8 +267,8 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     const double planning_s = planning.elapsed_s();
     ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
         return shade_localized(
-            context, {static_cache, dynamic_cache, transported, influence, irradiance, photons.caustic, frozen}, photon,
-            localized, reuse, stats);
+            context, {static_cache, dynamic_cache, corrected_cache, influence, irradiance, photons.caustic, frozen},
+            photon, localized, reuse, stats);
     });
     stats.shading_s += planning_s;
     stats.caustics_s = shaded.caustic_cpu_s;

@@ -116,9 +116,9 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
     return sum;
 }
 
-IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
-                                const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
-                                std::vector<uint8_t>* changed) {
+IrradianceCache correct_static_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
+                                     const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
+                                     std::vector<uint8_t>* changed) {
     std::vector<IrradianceRecord> records = static_cache.records();
     if (changed) changed->assign(records.size(), 0);
     if (dynamic.size() > 0) {
@@ -136,9 +136,9 @@ IrradianceCache corrected_cache(const IrradianceCache& static_cache, const Photo
             }
         });
     }
-    IrradianceCache corrected(static_cache.settings());
-    for (const IrradianceRecord& r : records) corrected.insert(r);
-    return corrected;
+    IrradianceCache corrected_cache(static_cache.settings());
+    for (const IrradianceRecord& r : records) corrected_cache.insert(r);
+    return corrected_cache;
 }
 
 }  // namespace steadylight

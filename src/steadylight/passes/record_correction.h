@@ -69,11 +69,12 @@ float kernel_share(const DiscProbes& probes);
 Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
                   const DiscProbes* probes);
 
-/// The static records with correction_at added at each (negative results clamped to 0). `probes`
+/// L_t's cache, the corrected cache: the static records with correction_at added at each
+/// (negative results clamped to 0). `probes`
 /// from CorrectionCoverage (may be empty when `dynamic` is). `changed`, when given, gets a flag
 /// per record: whether its irradiance changed.
-IrradianceCache corrected_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
-                                const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
-                                std::vector<uint8_t>* changed = nullptr);
+IrradianceCache correct_static_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
+                                     const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
+                                     std::vector<uint8_t>* changed = nullptr);
 
 }  // namespace steadylight

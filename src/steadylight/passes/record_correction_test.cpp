@@ -176,9 +176,9 @@ TEST(RecordCorrection, RecordsAmongStripsProudOfTheSurfaceReadTheChangeThere) {
             cache.insert({.p = {x, y, -1.5f + 0.2f * float(i)}, .n = up, .E = {10, 10, 10}, .radius = 0.1f});
         const CorrectionCoverage coverage;
         const std::vector<DiscProbes>& probes = coverage.probes(prepared.context(), cache, CorrectionSettings{});
-        const IrradianceCache corrected = corrected_cache(cache, map, CorrectionSettings{}, probes);
+        const IrradianceCache corrected_cache = correct_static_cache(cache, map, CorrectionSettings{}, probes);
         double sum = 0;
-        for (const IrradianceRecord& r : corrected.records()) sum += luminance(r.E) - 10;
+        for (const IrradianceRecord& r : corrected_cache.records()) sum += luminance(r.E) - 10;
         EXPECT_NEAR(sum / 16, floor.change, 0.06 * std::abs(floor.change)) << "x = " << x;
     }
 }
@@ -196,10 +196,11 @@ TEST(RecordCorrection, NoDynamicPhotonsLeaveTheRecordsAsTheyAre) {
     cache.insert({.p = {0, 0, 0}, .n = up, .E = {0.5f, -0.0f, 0.25f}, .radius = 0.3f});
     cache.insert({.p = {1, 0, 0}, .n = up, .E = {0.1f, 0.2f, 0.3f}, .radius = 0.3f});
     std::vector<uint8_t> changed;
-    const IrradianceCache corrected = corrected_cache(cache, PhotonMap{}, CorrectionSettings{}, {}, &changed);
-    ASSERT_EQ(corrected.records().size(), 2u);
+    const IrradianceCache corrected_cache =
+        correct_static_cache(cache, PhotonMap{}, CorrectionSettings{}, {}, &changed);
+    ASSERT_EQ(corrected_cache.records().size(), 2u);
     for (size_t i = 0; i < 2; ++i) {
-        EXPECT_EQ(std::memcmp(&corrected.records()[i].E, &cache.records()[i].E, sizeof(Rgb)), 0);
+        EXPECT_EQ(std::memcmp(&corrected_cache.records()[i].E, &cache.records()[i].E, sizeof(Rgb)), 0);
         EXPECT_EQ(changed[i], 0);
     }
 }
