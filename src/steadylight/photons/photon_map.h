@@ -18,6 +18,7 @@
 #include "steadylight/base/ray.h"
 #include "steadylight/photons/photon.h"
 #include "steadylight/photons/point_index.h"
+#include "steadylight/photons/surface_coverage.h"
 
 namespace steadylight {
 
@@ -27,55 +28,6 @@ struct DensitySettings {
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(DensitySettings, k, max_radius)
 void validate(const DensitySettings& settings, const std::string& where);
-
-/// How far off the surface, over a disc's radius, the probes of its coverage start (surface_coverage.h).
-constexpr float coverage_lift = 0.02f;
-/// The least height off the surface they start at: well above the ray epsilon.
-inline float coverage_min_lift(Vec3 p) { return 10 * ray_epsilon(p); }
-/// How far from the centre p of a density estimate's disc of radius r the rays of its probes
-/// reach (they start at most max(coverage_lift r, coverage_min_lift) above the disc and look at
-/// most r below it), and so do those of SurfaceCoverage::reaches for points within the disc.
-inline float coverage_probe_extent(Vec3 p, float r) { return 2 * r + 2 * coverage_min_lift(p); }
-
-/// Which cells of a density estimate's disc the surface under its centre reaches, one probe per
-/// cell (surface_coverage.h): two rings of equal area, eight sectors each, in the disc's frame
-/// (OrthonormalBasis::from_normal of its normal), the sectors turned by `turn` (in sectors) and the outer
-/// ring's by half a sector more. Sector j of a ring is centred on its probe's angle.
-struct DiscProbes {
-    static constexpr int rings = 2, sectors = 8;
-    uint16_t reached = 0xffff;  // bit ring * sectors + sector
-    float turn = 0;
-
-    float share() const { return float(std::popcount(reached)) / (rings * sectors); }
-    /// The angle, in the disc's frame, at which the probe of cell (ring, sector) lies: the
-    /// middle of its sector, turned by `turn` sectors, the outer ring half a sector further.
-    float angle(int ring, int sector) const { return 2 * pi * (float(sector) + turn + 0.5f * float(ring)) / sectors; }
-    /// Whether the probe of the cell holding the disc's point (x, y), in its frame, reached it;
-    /// `radius2` is the disc's squared radius.
-    bool reached_cell(float x, float y, float radius2) const {
-        const int ring = x * x + y * y < radius2 / rings ? 0 : 1;
-        const float at = std::atan2(y, x) * (sectors / (2 * pi)) - turn - 0.5f * float(ring);
-        const int sector = ((int(std::floor(at + 0.5f)) % sectors) + sectors) % sectors;
-        return (reached >> (ring * sectors + sector)) & 1;
-    }
-};
-
-/// How a density estimate's disc lies on the surface under its centre (surface_coverage.h).
-struct SurfaceCoverage {
-    /// The probes of the disc of radius `radius` around `p`, in the plane of normal `n`: which
-    /// of its cells the surface under p reaches, seen from `lift` above the plane (a step lower
-    /// than that does not stop it), a surface at most `reach` below the plane counting as on it;
-    /// `seed` varies where they probe.
-    std::function<DiscProbes(Vec3 p, Vec3 n, float radius, float lift, float reach, uint64_t seed)> probes;
-    /// Whether the surface under p reaches q (taken onto the disc's plane, or, in front of it,
-    /// seen from the centre), `radius` being the disc's: a photon there lies on the surface the
-    /// estimate is for, not behind a wall that rises from it (the inside of a lamp's closed
-    /// housing against a wall) or on another surface just in front of it (a housing's top hung
-    /// under the ceiling).
-    std::function<bool(Vec3 p, Vec3 n, float radius, Vec3 q)> reaches;
-
-    explicit operator bool() const { return bool(probes); }
-};
 
 class PhotonMap {
 public:
