@@ -3,7 +3,7 @@
 
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
-#include "steadylight/photons/photon_walk.h"
+#include "steadylight/photons/photon_tracer.h"
 
 namespace steadylight {
 namespace {

@@ -5,7 +5,7 @@
 // roulette) with what resuming the path there needs. A frame tests these rays against its
 // dynamic objects only (RayTracer::meets_dynamic: the bounds, then the tracer's own instance
 // query), retraces in the complete scene only the paths that meet one, from that first hit on,
-// with the same quasi-random numbers (photon_walk.h), and composes its maps: the static
+// with the same quasi-random numbers (photon_tracer.h), and composes its maps: the static
 // photons minus the changed paths' tails plus the new ones, in the order full tracing gives.
 // The result equals trace_photons() photon for photon, bit for bit; the composed maps search
 // the static map's index plus a small one of the new photons (PhotonMap's composed form).

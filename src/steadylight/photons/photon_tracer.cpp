@@ -4,7 +4,7 @@
 
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/settings_check.h"
-#include "steadylight/photons/photon_walk.h"
+#include "steadylight/photons/photon_paths.h"
 #include "steadylight/shading/surface_point.h"
 
 namespace steadylight {
@@ -93,7 +93,7 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
 
         // Scatter, or be absorbed (by the surface or the glass behind it): survive with the
         // probability of the scattered power. Always these four numbers, whatever happens next:
-        // resumed paths rely on it (photon_walk.h).
+        // resumed paths rely on it (photon_tracer.h).
         const OrthonormalBasis basis = OrthonormalBasis::from_normal(sp.nm);
         const float u_lobe = path.sampler.next(), u_survive = path.sampler.next();
         const std::optional<BsdfSample> bs =
