@@ -1,4 +1,5 @@
-// The dynamic photon map's rules (paper §3.1, Figure 2; DESIGN.md §2.1), checked on small scenes.
+// The dynamic photon map of photon tracing (photon_tracer.h), traced and composed from the static
+// paths (photon_paths.h): each of its rules (paper §3.1, Figure 2), checked on small scenes.
 #include <gtest/gtest.h>
 
 #include "steadylight/photons/photon_paths.h"
