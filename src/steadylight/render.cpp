@@ -17,7 +17,6 @@
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/video.h"
 #include "steadylight/passes/frame_pass.h"
-#include "steadylight/passes/pixel_reuse.h"
 #include "steadylight/run/console.h"
 #include "steadylight/run/frame_claim.h"
 #include "steadylight/run/frame_manifest.h"
@@ -73,38 +72,6 @@ bool reuses_photon_paths(const RenderSettings& settings) {
     return settings.reuse && method_info(settings.method).reads.photon;
 }
 
-/// The static frame of pixel reuse (passes/pixel_reuse.h) when the localized method renders a
-/// segment whose camera does not move and the frame fits in a quarter of the memory available;
-/// else null (a fallback, with a log line, not an error).
-std::shared_ptr<const StaticFrame> segment_static_frame(const RenderSettings& settings, const Scene& scene,
-                                                        RayTracer& tracer, const Segment& segment,
-                                                        const StaticSolution& solution) {
-    if (!settings.reuse || settings.method != Method::localized || !solution.photon_paths) return nullptr;
-    if (distinct_views(scene, segment).size() != 1) {
-        spdlog::info("pixel reuse: off for frames {}-{}: the camera moves", segment.first, segment.last);
-        return nullptr;
-    }
-    const Camera& camera = scene.evaluate(segment.first).camera;
-    const double bytes = double(camera.width) * double(camera.height) *
-                         double(StaticFrame::bytes_per_pixel(settings.photon.shading.samples_per_pixel));
-    const double budget = double(memory_available().bytes) / 4;
-    if (bytes > budget) {
-        spdlog::info(
-            "pixel reuse: off: the static frame would need {:.0f} MB, more than a quarter of the {:.0f} MB "
-            "available; every pixel is shaded in every frame",
-            bytes / 1e6, budget * 4 / 1e6);
-        return nullptr;
-    }
-    const Stopwatch time;
-    const Bsdfs bsdfs = make_bsdfs(scene);
-    const PlacedFrame view(scene, tracer, bsdfs, segment.first);
-    auto frame = std::make_shared<const StaticFrame>(
-        make_static_frame(view.context(), solution, settings.photon, settings.localized));
-    spdlog::info("static frame: {}x{} pixels, {:.1f} MB, shaded in {:.2f} s", camera.width, camera.height, bytes / 1e6,
-                 time.elapsed_s());
-    return frame;
-}
-
 /// What every frame of `segment` starts from: the method's static pass (or its file), and the
 /// static photon paths when frames reuse them. Only for methods that have either.
 StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
@@ -121,7 +88,9 @@ StaticSolution segment_solution(const RenderSettings& settings, const Scene& sce
     if (!method_info(settings.method).has_static_pass)
         return {IrradianceCache(settings.photon.cache), 0, false, "", std::move(paths)};
     StaticSolution solution = static_pass(settings, scene, tracer, segment, std::move(paths));
-    solution.static_frame = segment_static_frame(settings, scene, tracer, segment, solution);
+    if (settings.reuse && settings.method == Method::localized && solution.photon_paths)
+        solution.static_frame = segment_static_frame(scene, tracer, segment, solution, settings.photon,
+                                                     settings.localized, double(memory_available().bytes));
     return solution;
 }
 

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include <spdlog/spdlog.h>
+
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/passes/frame_photons.h"
@@ -103,50 +105,27 @@ struct LocalizedLighting {
     bool frozen = false;
 };
 
-/// The shading pass of the localized method: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on
-/// dynamic objects; the frame's own or the static frame's (reuse.visibility static_only).
-ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting& lighting,
-                            const PhotonMappingSettings& photon, const LocalizedSettings& localized, PixelReuse reuse,
-                            FrameStats& stats) {
-    const float max_radius = photon.irradiance_estimate.max_radius;
-    const PointFallbacks fallback = make_point_fallbacks(context, lighting.irradiance, max_radius, photon.gather);
-    const auto influence_at = [&](int x, int y) {
-        return lighting.influence.values.empty() ? 0.0f : lighting.influence.at(x, y);
-    };
-    std::atomic<long> fallbacks = 0, gather_rays = 0;
-    const auto interpolate_or_gather = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
-                                           const PixelSample& pixel) {
-        std::atomic<long> gathered = 0, rays = 0;
-        const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays);
-        if (gathered && pixel.trace) pixel.trace->flags |= PixelTrace::gather;
-        fallbacks += gathered, gather_rays += rays;
-        return E;
-    };
-    const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra) {
-        const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
-        const float I = on_dynamic ? 0.0f : influence_at(pixel.x, pixel.y);
-        const float weight = on_dynamic ? 1.0f : (lighting.frozen ? 0.0f : blend_weight(I, localized));
-        const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
-            return PixelMemo::Values{weight > 0 ? interpolate_or_gather(lighting.dynamic_cache, sp, n, pixel) : Rgb{},
-                                     weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel) : Rgb{},
-                                     Rgb{}};
-        });
-        if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
-        return L_y * weight + L_t * (1 - weight);
-    };
+/// The influence at pixel (x, y); 0 where the frame has no influence map (frozen, static frame).
+float influence_at(const LocalizedLighting& lighting, int x, int y) {
+    return lighting.influence.values.empty() ? 0.0f : lighting.influence.at(x, y);
+}
+
+/// What a frame that reuses a static frame's pixels computes for them anew: a reused pixel's
+/// influence layer, and the indirect light of a pixel whose corrected records changed.
+void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting) {
     // A reused pixel's influence layer: what its camera rays that reached a diffuse point would
     // have written (fill_layers), summed in the same order.
-    reuse.reused_layers = [&](int x, int y, const PixelTrace& trace, PixelSums& sums) {
+    reuse.reused_layers = [&lighting](int x, int y, const PixelTrace& trace, PixelSums& sums) {
         Rgb sum;
         for (int ray = 0; ray < trace.surface_rays; ++ray)
-            sum += Rgb{1, 1, 1} * std::min(influence_at(x, y), max_influence_shown);
+            sum += Rgb{1, 1, 1} * std::min(influence_at(lighting, x, y), max_influence_shown);
         sums.extra[influence_slot] = sum;
     };
     // A pixel whose corrected records changed, and nothing else: L_t looked up again at each of
     // its look-ups, then each camera ray's share summed in ray order, as shading sums it (L_i is
     // L_t there, the blend weight being 0, and its L_t layer the same product).
-    reuse.look_up_again = [&](int, int, size_t pixel, PixelSums& sums) {
-        const StaticFrame& base = *reuse.base;
+    reuse.look_up_again = [&reuse, &lighting](int, int, size_t pixel, PixelSums& sums) {
+        const StaticFrame& base = reuse.base();
         const PixelLookUps& look_ups = base.look_ups[pixel];
         std::array<std::optional<Rgb>, PixelMemo::capacity> L_t;
         Rgb L_i;
@@ -161,12 +140,42 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         }
         sums.indirect = sums.extra[L_t_slot] = L_i;
     };
+}
+
+/// The shading pass of the localized method: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on
+/// dynamic objects; the frame's own, or the static frame's (visibility static_only).
+ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting& lighting,
+                            const PhotonMappingSettings& photon, const LocalizedSettings& localized,
+                            Visibility visibility, PixelSource* source, FrameStats& stats) {
+    const float max_radius = photon.irradiance_estimate.max_radius;
+    const PointFallbacks fallback = make_point_fallbacks(context, lighting.irradiance, max_radius, photon.gather);
+    std::atomic<long> fallbacks = 0, gather_rays = 0;
+    const auto interpolate_or_gather = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
+                                           const PixelSample& pixel) {
+        std::atomic<long> gathered = 0, rays = 0;
+        const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays);
+        if (gathered && pixel.recorder) pixel.recorder->add_flags(pixel.pixel_index, PixelRecorder::gather);
+        fallbacks += gathered, gather_rays += rays;
+        return E;
+    };
+    const auto indirect = [&](const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra) {
+        const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
+        const float I = on_dynamic ? 0.0f : influence_at(lighting, pixel.x, pixel.y);
+        const float weight = on_dynamic ? 1.0f : (lighting.frozen ? 0.0f : blend_weight(I, localized));
+        const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
+            return PixelMemo::Values{weight > 0 ? interpolate_or_gather(lighting.dynamic_cache, sp, n, pixel) : Rgb{},
+                                     weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel) : Rgb{},
+                                     Rgb{}};
+        });
+        if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
+        return L_y * weight + L_t * (1 - weight);
+    };
     ShadedFrame shaded = shade_frame(
         context, photon.shading, lighting.caustic, indirect,
         [&](const Ray& ray) {
-            return gather_from_photons(context, lighting.irradiance, max_radius, reuse.visibility, ray).L;
+            return gather_from_photons(context, lighting.irradiance, max_radius, visibility, ray).L;
         },
-        reuse);
+        visibility, source);
     stats.fallback_gathers += fallbacks;
     stats.gather_rays += gather_rays;
     return shaded;
@@ -185,11 +194,98 @@ StaticFrame make_static_frame(const FrameContext& context, const StaticSolution&
     const IrradianceCache no_dynamic_cache(photon.cache);
     const InfluenceMap no_influence;
     StaticFrame out;
+    StaticFrameMaker maker(out, context.frame, photon.shading.samples_per_pixel);
     FrameStats stats;
     shade_localized(
         context, {solution.cache, no_dynamic_cache, corrected_cache, no_influence, irradiance, paths.caustic.photons},
-        photon, localized, {.visibility = Visibility::static_only, .keep = &out}, stats);
+        photon, localized, Visibility::static_only, &maker, stats);
     return out;
+}
+
+namespace {
+
+/// The static frame a frame may reuse pixels of: the solution's, when its view and lights are
+/// the frame's (never for the frozen baseline); else null.
+const StaticFrame* reusable_static_frame(const FrameContext& context, const StaticSolution& solution, bool frozen) {
+    const StaticFrame* base = solution.static_frame.get();
+    return base && !frozen && same_view_and_lights(context.scene, context.frame, base->made_at) ? base : nullptr;
+}
+
+/// L_y: the dynamic cache, built only where the influence is felt and on dynamic objects.
+CacheBuildStats build_dynamic_cache(IrradianceCache& dynamic_cache, const FrameContext& context,
+                                    const IrradiancePhotons& irradiance, const InfluenceMap& influence,
+                                    const PhotonMappingSettings& photon, const LocalizedSettings& localized,
+                                    bool frozen) {
+    const auto wanted = [&](const CachePoint& point, int x, int y) {
+        return context.scene.object(point.object).is_dynamic() || (!frozen && influence.at(x, y) > localized.tau_lower);
+    };
+    return build_photon_cache(dynamic_cache, {context, irradiance, photon.irradiance_estimate.max_radius, photon.gather,
+                                              Visibility::everything, wanted});
+}
+
+/// Which pixels a frame shades again against the static frame `base`, and what it reuses
+/// (pixel_reuse.h); the counts go into `stats`.
+PixelPlan plan_frame_pixels(const FrameContext& context, const StaticFrame& base, const FramePhotons& traced,
+                            const IrradianceCache& static_cache, const std::vector<uint8_t>& changed_records,
+                            const InfluenceMap& influence, const PhotonMappingSettings& photon,
+                            const LocalizedSettings& localized, FrameStats& stats) {
+    const Camera& camera = context.frame.camera;
+    const FrameChanges changes{context.tracer.dynamic_bounds(),
+                               context.lights.bounds(),
+                               indirect_changes(camera, static_cache, changed_records, influence, localized),
+                               std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
+                               traced.caustic_changes.everywhere || !traced.caustic_changes.points.empty(),
+                               caustic_changes(camera, traced.caustic_changes, photon.shading.caustic_estimate)};
+    PixelPlan plan = plan_pixels(camera, base, changes);
+    stats.pixels_reused = plan.reused, stats.pixels_looked_up_again = plan.looked_up_again;
+    stats.pixels_redone_but_direct = plan.redone_but_direct, stats.pixels_redone = plan.redone;
+    std::copy(std::begin(plan.changed_pixels), std::end(plan.changed_pixels), stats.pixels_changed.begin());
+    return plan;
+}
+
+/// Moves the shaded layers into the frame and adds the pictures of the records and of what was
+/// redone (`changed`: empty when the frame shaded every term of every pixel).
+void take_localized_layers(ShadedFrame& shaded, const Camera& camera, const IrradianceCache& static_cache,
+                           const IrradianceCache& dynamic_cache, std::vector<uint8_t> changed, LocalizedFrame& out) {
+    take_common_layers(shaded, out);
+    out.influence = std::move(shaded.extra[influence_slot]);
+    out.dynamic = std::move(shaded.extra[dynamic_slot]);
+    out.L_y = std::move(shaded.extra[L_y_slot]);
+    out.L_t = std::move(shaded.extra[L_t_slot]);
+    out.indirect_static = std::move(shaded.extra[indirect_static_slot]);
+    out.static_records = record_picture(camera, static_cache.records());
+    out.dynamic_records = record_picture(camera, dynamic_cache.records());
+    if (changed.empty()) changed.assign(size_t(camera.width) * size_t(camera.height), 15);
+    out.changed = changed_picture(camera, changed);
+}
+
+}  // namespace
+
+std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                                        const StaticSolution& solution,
+                                                        const PhotonMappingSettings& photon,
+                                                        const LocalizedSettings& localized, double available_bytes) {
+    if (distinct_views(scene, segment).size() != 1) {
+        spdlog::info("pixel reuse: off for frames {}-{}: the camera moves", segment.first, segment.last);
+        return nullptr;
+    }
+    const Camera& camera = scene.evaluate(segment.first).camera;
+    const int samples = photon.shading.samples_per_pixel;
+    const double bytes = double(camera.width) * double(camera.height) * double(StaticFrame::bytes_per_pixel(samples));
+    if (!static_frame_fits(camera.width, camera.height, samples, available_bytes)) {
+        spdlog::info(
+            "pixel reuse: off: the static frame would need {:.0f} MB, more than {:.0f}% of the {:.0f} MB "
+            "available; every pixel is shaded in every frame",
+            bytes / 1e6, static_frame_memory_share * 100, available_bytes / 1e6);
+        return nullptr;
+    }
+    const Stopwatch time;
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PlacedFrame view(scene, tracer, bsdfs, segment.first);
+    auto frame = std::make_shared<const StaticFrame>(make_static_frame(view.context(), solution, photon, localized));
+    spdlog::info("static frame: {}x{} pixels, {:.1f} MB, shaded in {:.2f} s", camera.width, camera.height, bytes / 1e6,
+                 time.elapsed_s());
+    return frame;
 }
 
 LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution& solution,
@@ -201,37 +297,29 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     FrameStats& stats = out.stats;
     stats.frame = context.frame.frame;
     stats.static_records = solution.records();
-    const float max_radius = photon.irradiance_estimate.max_radius;
-    const StaticFrame* base = solution.static_frame && !frozen &&
-                                      same_view_and_lights(context.scene, context.frame, solution.static_frame->made_at)
-                                  ? solution.static_frame.get()
-                                  : nullptr;
+    const IrradianceCache& static_cache = solution.cache;
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
     const StaticPhotonPaths* paths = solution.photon_paths.get();
     const FramePhotons traced(context, photon, stats, paths, paths ? paths->irradiance.get() : nullptr);
     const TracedPhotons& photons = traced.maps;
-    const IrradiancePhotons& irradiance = traced.irradiance;
 
     // Influence of the dynamic objects on each pixel's point.
     const InfluenceMap influence = timed_phase("influence", stats.influence_s, [&] {
         return frozen ? InfluenceMap{}
-                      : estimate_influence(context, photons.dynamic, solution.cache, localized, max_radius);
+                      : estimate_influence(context, photons.dynamic, static_cache, localized,
+                                           photon.irradiance_estimate.max_radius);
     });
 
-    // L_y: the dynamic cache, only where the influence is felt and on dynamic objects.
+    // L_y: the dynamic cache.
     IrradianceCache dynamic_cache(photon.cache);
-    const auto wanted = [&](const CachePoint& point, int x, int y) {
-        return context.scene.object(point.object).is_dynamic() || (!frozen && influence.at(x, y) > localized.tau_lower);
-    };
     const CacheBuildStats built = timed_phase("L_y", stats.cache_s, [&] {
-        return build_photon_cache(dynamic_cache,
-                                  {context, irradiance, max_radius, photon.gather, Visibility::everything, wanted});
+        return build_dynamic_cache(dynamic_cache, context, traced.irradiance, influence, photon, localized, frozen);
     });
     stats.irradiance_records = built.records_added;
+    stats.gather_rays = built.gather_rays;
 
-    // L_t: the static records corrected by the dynamic map.
-    const IrradianceCache& static_cache = solution.cache;
+    // L_t: the static records corrected by the dynamic map (the frozen baseline: as they are).
     std::vector<uint8_t> changed_records;
     const IrradianceCache own_corrected_cache = timed_phase("L_t", stats.correction_s, [&] {
         return frozen ? IrradianceCache(photon.cache)
@@ -242,50 +330,25 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     });
     const IrradianceCache& corrected_cache = frozen ? static_cache : own_corrected_cache;
 
-    // With a static frame, which pixels to shade again (pixel_reuse.h): part of the shading phase.
-    PixelReuse reuse;
+    // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects; with a static
+    // frame only the pixels the frame's changes reach (planning them is part of the phase).
+    const LocalizedLighting lighting{static_cache,      dynamic_cache,   corrected_cache, influence,
+                                     traced.irradiance, photons.caustic, frozen};
+    const StaticFrame* base = reusable_static_frame(context, solution, frozen);
     PixelPlan plan;
-    const Stopwatch planning;
-    if (base) {
-        const FrameChanges changes{
-            context.tracer.dynamic_bounds(),
-            context.lights.bounds(),
-            indirect_changes(context.frame.camera, static_cache, changed_records, influence, localized),
-            std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
-            traced.caustic_changes.everywhere || !traced.caustic_changes.points.empty(),
-            caustic_changes(context.frame.camera, traced.caustic_changes, photon.shading.caustic_estimate)};
-        plan = plan_pixels(context.frame.camera, *base, changes);
-        reuse.base = base;
-        reuse.work = &plan.work;
-        stats.pixels_reused = plan.reused, stats.pixels_looked_up_again = plan.looked_up_again;
-        stats.pixels_redone_but_direct = plan.redone_but_direct, stats.pixels_redone = plan.redone;
-        std::copy(std::begin(plan.changed_pixels), std::end(plan.changed_pixels), stats.pixels_changed.begin());
-    }
-
-    // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects.
-    stats.gather_rays = built.gather_rays;
-    const double planning_s = planning.elapsed_s();
     ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
-        return shade_localized(
-            context, {static_cache, dynamic_cache, corrected_cache, influence, irradiance, photons.caustic, frozen},
-            photon, localized, reuse, stats);
+        if (!base) return shade_localized(context, lighting, photon, localized, Visibility::everything, nullptr, stats);
+        plan = plan_frame_pixels(context, *base, traced, static_cache, changed_records, influence, photon, localized,
+                                 stats);
+        PixelReuse reuse(*base, plan.work);
+        set_reused_values(reuse, lighting);
+        return shade_localized(context, lighting, photon, localized, Visibility::everything, &reuse, stats);
     });
-    stats.shading_s += planning_s;
     stats.caustics_s = shaded.caustic_cpu_s;
 
-    take_common_layers(shaded, out);
-    out.influence = std::move(shaded.extra[influence_slot]);
-    out.dynamic = std::move(shaded.extra[dynamic_slot]);
-    out.L_y = std::move(shaded.extra[L_y_slot]);
-    out.L_t = std::move(shaded.extra[L_t_slot]);
-    out.indirect_static = std::move(shaded.extra[indirect_static_slot]);
-    out.static_records = record_picture(context.frame.camera, static_cache.records());
-    out.dynamic_records = record_picture(context.frame.camera, dynamic_cache.records());
-    // Without a static frame every term of every pixel was computed.
-    if (!base) plan.changed.assign(size_t(context.frame.camera.width) * size_t(context.frame.camera.height), 15);
-    out.changed = changed_picture(context.frame.camera, plan.changed);
-    stats.irradiance_photons = irradiance.computed();
-    stats.irradiance_reused = irradiance.reused();
+    take_localized_layers(shaded, context.frame.camera, static_cache, dynamic_cache, std::move(plan.changed), out);
+    stats.irradiance_photons = traced.irradiance.computed();
+    stats.irradiance_reused = traced.irradiance.reused();
     stats.total_s = total.elapsed_s();
     return out;
 }

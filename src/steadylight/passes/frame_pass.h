@@ -8,6 +8,8 @@
 // cache as it is for static points, and L_y on dynamic objects only.
 #pragma once
 
+#include <memory>
+
 #include "steadylight/base/image.h"
 #include "steadylight/passes/frame_stats.h"
 #include "steadylight/passes/localized_settings.h"
@@ -38,6 +40,14 @@ struct LocalizedFrame {
 /// objects removed, from the segment's static cache and photon paths (which must be there).
 StaticFrame make_static_frame(const FrameContext& context, const StaticSolution& solution,
                               const PhotonMappingSettings& photon, const LocalizedSettings& localized);
+
+/// The static frame of a segment whose camera stands still, when it fits in
+/// static_frame_memory_share of `available_bytes` (pixel_reuse.h); else null, with a log line
+/// saying why (frames then shade every pixel).
+std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayTracer& tracer, const Segment& segment,
+                                                        const StaticSolution& solution,
+                                                        const PhotonMappingSettings& photon,
+                                                        const LocalizedSettings& localized, double available_bytes);
 
 /// One frame; with the solution's static frame, when its view and lights are this frame's, only
 /// the pixels the dynamic objects can change are shaded again (not for StaticCacheUse::frozen).

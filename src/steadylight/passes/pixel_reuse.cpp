@@ -6,6 +6,42 @@
 
 namespace steadylight {
 
+StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples) : m_out(out) {
+    const Camera& camera = frame.camera;
+    const size_t pixels = size_t(camera.width) * size_t(camera.height);
+    out = {frame,
+           camera.width,
+           camera.height,
+           samples,
+           std::vector<PixelSums>(pixels),
+           std::vector<PixelTrace>(pixels),
+           std::vector<PixelLookUps>(pixels),
+           std::vector<uint8_t>(pixels * size_t(samples), StaticFrame::no_look_up),
+           std::vector<Rgb>(pixels * size_t(samples))};
+}
+
+void StaticFrameMaker::add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) {
+    const size_t ray = pixel * size_t(m_out.samples) + size_t(sample);
+    m_out.ray_look_up[ray] = uint8_t(entry);
+    m_out.ray_albedo[ray] = albedo_over_pi;
+    m_out.look_ups[pixel].p[size_t(entry)] = p;
+    m_out.look_ups[pixel].n[size_t(entry)] = n;
+}
+
+PixelSource::Shading PixelReuse::begin(int x, int y, size_t pixel, PixelSums& sums) {
+    const PixelWork work = m_work[pixel];
+    if (work == PixelWork::redo) return Shading::all;
+    if (work == PixelWork::redo_but_direct) return Shading::all_but_direct;
+    sums = m_base.sums[pixel];
+    if (reused_layers) reused_layers(x, y, m_base.traces[pixel], sums);
+    if (work == PixelWork::look_up_again) look_up_again(x, y, pixel, sums);
+    return Shading::none;
+}
+
+void PixelReuse::finish(size_t pixel, PixelSums& sums) {
+    if (m_work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.sums[pixel].direct;
+}
+
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
                            Outline outline) {
     if (sphere.empty()) return;
@@ -59,23 +95,24 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
             const BoundingSphere points = BoundingSphere::of_box(trace.lo, trace.hi);
             // Shadow rays start a ray offset off their surface; a millionth of the scene's size is more.
             const float slack = points.empty() ? 0 : 1e-5f * (1 + length(points.center) + points.radius);
-            const bool chains = trace.flags & PixelTrace::chain;
+            const bool chains = trace.flags & PixelRecorder::chain;
             uint8_t changed = 0;
-            if (seen[size_t(i)] || (trace.flags & PixelTrace::open_chain)) changed |= camera_term;
+            if (seen[size_t(i)] || (trace.flags & PixelRecorder::open_chain)) changed |= camera_term;
             for (const BoundingSphere& object : changes.dynamic) {
                 if (chains && may_meet_segments(object, points, points, slack)) changed |= camera_term;
                 for (const BoundingSphere& light : changes.lights)
                     if (may_meet_segments(object, points, light, slack)) changed |= direct_term;
             }
-            if (changes.indirect[size_t(i)] || (trace.flags & (PixelTrace::gather | PixelTrace::coat)) ||
+            if (changes.indirect[size_t(i)] || (trace.flags & (PixelRecorder::gather | PixelRecorder::coat)) ||
                 (chains && (changes.records_changed || changes.caustics_changed)))
                 changed |= indirect_term;
-            if ((trace.flags & PixelTrace::reads_caustics) && changes.caustic[size_t(i)]) changed |= caustic_term;
+            if ((trace.flags & PixelRecorder::reads_caustics) && changes.caustic[size_t(i)]) changed |= caustic_term;
             plan.changed[size_t(i)] = changed;
             // Looked up again where only corrected records changed for a pixel whose every look-up was kept.
             const bool look_up_again =
                 changed == indirect_term && changes.indirect[size_t(i)] == FrameChanges::records &&
-                !(trace.flags & (PixelTrace::chain | PixelTrace::coat | PixelTrace::gather | PixelTrace::unkept));
+                !(trace.flags &
+                  (PixelRecorder::chain | PixelRecorder::coat | PixelRecorder::gather | PixelRecorder::unkept));
             plan.work[size_t(i)] = !changed                                            ? PixelWork::reuse
                                    : look_up_again                                     ? PixelWork::look_up_again
                                    : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo

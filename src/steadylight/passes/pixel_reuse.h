@@ -1,8 +1,7 @@
-// Pixel reuse for a still camera (issue 12, point 2; docs/localized.md, "Pixels reused"). A
+// Pixel reuse for a still camera (docs/localized.md, "Pixels reused"). A
 // segment whose camera and lights do not move keeps a static frame: every pixel shaded with the
-// dynamic objects removed, its per-term sums and what its shading went through (shading_pass.h
-// StaticFrame). Each frame then asks, per pixel and conservatively, which terms the frame's
-// changes can reach, and does only that work:
+// dynamic objects removed, its per-term sums and what its shading went through (StaticFrame). Each frame then asks, per
+// pixel and conservatively, which terms the frame's changes can reach, and does only that work:
 //   camera  a camera ray may meet a dynamic object (the object's screen box), or a chain of
 //           mirror and glass bounces may (the sphere about the pixel's points)
 //   direct  a shadow ray may: a dynamic object's sphere meets the hull of the pixel's points and
@@ -20,13 +19,112 @@
 // or a caustic photon changed anywhere.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
 #include "steadylight/passes/shading_pass.h"
 
 namespace steadylight {
+
+/// What a pixel's shading went through (PixelRecorder's flags and points), kept in the static
+/// frame so that a later frame can tell whether the pixel can change.
+struct PixelTrace {
+    Vec3 lo{infinity, infinity, infinity}, hi{-infinity, -infinity, -infinity};  // box of every surface point hit
+    uint8_t flags = 0;                                                           // PixelRecorder::Flag bits
+    uint8_t surface_rays = 0;  // camera rays whose first hit is diffuse (they fill the method's layers)
+
+    void add_point(Vec3 p) { lo = min(lo, p), hi = max(hi, p); }
+};
+
+/// Where a pixel's camera rays looked up their indirect light (PixelMemo's entries), so that a
+/// frame can look it up again there without tracing them.
+struct PixelLookUps {
+    std::array<Vec3, PixelMemo::capacity> p, n;
+};
+
+/// The static frame: every pixel's sums and trace, shaded with the dynamic objects removed, and
+/// where its camera rays looked up indirect light.
+struct StaticFrame {
+    static constexpr uint8_t no_look_up = 255;
+
+    FrameState made_at;                      // the view and lights it was shaded with
+    int width = 0, height = 0, samples = 0;  // samples: camera rays per pixel
+    std::vector<PixelSums> sums;
+    std::vector<PixelTrace> traces;
+    std::vector<PixelLookUps> look_ups;
+    std::vector<uint8_t>
+        ray_look_up;              // per pixel and camera ray: the look-up its indirect light came from, or no_look_up
+    std::vector<Rgb> ray_albedo;  // per pixel and camera ray: the albedo / pi that multiplied it
+
+    static size_t bytes_per_pixel(int samples) {
+        return sizeof(PixelSums) + sizeof(PixelTrace) + sizeof(PixelLookUps) + size_t(samples) * (1 + sizeof(Rgb));
+    }
+};
+
+/// A static frame is kept only where it takes at most this share of the memory available (else
+/// every frame shades every pixel).
+constexpr double static_frame_memory_share = 0.25;
+
+/// Whether a static frame of `width` x `height` pixels at `samples` camera rays a pixel fits in
+/// that share of `available_bytes`.
+inline bool static_frame_fits(int width, int height, int samples, double available_bytes) {
+    return double(width) * double(height) * double(StaticFrame::bytes_per_pixel(samples)) <=
+           static_frame_memory_share * available_bytes;
+}
+
+/// The pixel source that makes a static frame: every pixel shaded whole, its sums and what its
+/// shading went through kept.
+class StaticFrameMaker : public PixelSource, public PixelRecorder {
+public:
+    /// Fills `out`, made for `frame`'s camera at `samples` camera rays a pixel.
+    StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples);
+
+    Shading begin(int, int, size_t, PixelSums&) override { return Shading::all; }
+    void finish(size_t pixel, PixelSums& sums) override { m_out.sums[pixel] = sums; }
+    PixelRecorder* recorder() override { return this; }
+
+    void add_point(size_t pixel, Vec3 p) override { m_out.traces[pixel].add_point(p); }
+    void add_flags(size_t pixel, uint8_t flags) override { m_out.traces[pixel].flags |= flags; }
+    void add_surface_ray(size_t pixel) override { ++m_out.traces[pixel].surface_rays; }
+    void add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) override;
+
+private:
+    StaticFrame& m_out;
+};
+
+/// What a frame does with a pixel when it has a static frame.
+enum class PixelWork : uint8_t {
+    reuse,            // every term as the static frame has it
+    look_up_again,    // only the indirect light changes: look it up again where the camera rays did, none traced
+    redo_but_direct,  // shade again, but the direct light (no shadow rays) is the static frame's
+    redo,             // shade again
+};
+
+/// The pixel source of a frame that reuses a static frame: each pixel's work (plan_pixels), the
+/// static frame's sums where a pixel is reused, and the method's values that change although the
+/// pixel's terms do not.
+class PixelReuse : public PixelSource {
+public:
+    PixelReuse(const StaticFrame& base, const std::vector<PixelWork>& work) : m_base(base), m_work(work) {}
+
+    /// Gives a reused pixel's sums the method's layers that change between frames although its
+    /// terms do not (the localized method's influence).
+    std::function<void(int x, int y, const PixelTrace& trace, PixelSums& sums)> reused_layers;
+    /// Gives a PixelWork::look_up_again pixel's sums (the static frame's) its indirect light and
+    /// the method's layers, looked up again at the static frame's look-ups of pixel `index`.
+    std::function<void(int x, int y, size_t index, PixelSums& sums)> look_up_again;
+
+    const StaticFrame& base() const { return m_base; }
+    Shading begin(int x, int y, size_t pixel, PixelSums& sums) override;
+    void finish(size_t pixel, PixelSums& sums) override;
+
+private:
+    const StaticFrame& m_base;
+    const std::vector<PixelWork>& m_work;  // one per pixel, row by row
+};
 
 /// The bits of the `changed` layer: which terms of a pixel a frame redid.
 enum ChangedTerm : uint8_t { camera_term = 1, direct_term = 2, indirect_term = 4, caustic_term = 8 };

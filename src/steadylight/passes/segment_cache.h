@@ -10,9 +10,9 @@
 #include <memory>
 #include <string>
 
+#include "steadylight/passes/pixel_reuse.h"
 #include "steadylight/passes/record_correction.h"
 #include "steadylight/passes/segment_pass.h"
-#include "steadylight/passes/shading_pass.h"
 #include "steadylight/photons/photon_paths.h"
 
 namespace steadylight {

@@ -49,21 +49,17 @@ Pcg32 pixel_stream(const Camera& camera, int x, int y, PixelStream stream, int s
     return Pcg32(hash_ids(uint64_t(y) * uint64_t(camera.width) + uint64_t(x), uint64_t(stream), uint64_t(sample)));
 }
 
-/// Keeps where a camera ray's indirect light came from: its look-up (the pixel memo's entry)
+/// Records where a camera ray's indirect light came from: its look-up (the pixel memo's entry)
 /// and the albedo that multiplied it. A ray whose value the memo did not keep, or whose layers
 /// show another albedo (fill_layers takes the one seen head-on), marks its pixel `unkept`.
-void keep_look_up(const PixelSample& pixel, const Bsdf& bsdf, Rgb albedo_over_pi) {
-    StaticFrame& kept = *pixel.kept;
+void record_look_up(const PixelSample& pixel, const Bsdf& bsdf, Rgb albedo_over_pi) {
     const int entry = pixel.memo ? pixel.memo->last_used() : -1;
     if (entry < 0 || bsdf.diffuse_reflectance({0, 0, 1}) * inv_pi != albedo_over_pi) {
-        pixel.trace->flags |= PixelTrace::unkept;
+        pixel.recorder->add_flags(pixel.pixel_index, PixelRecorder::unkept);
         return;
     }
-    const size_t ray = pixel.pixel_index * size_t(kept.samples) + size_t(pixel.sample);
-    kept.ray_look_up[ray] = uint8_t(entry);
-    kept.ray_albedo[ray] = albedo_over_pi;
-    std::tie(kept.look_ups[pixel.pixel_index].p[size_t(entry)], kept.look_ups[pixel.pixel_index].n[size_t(entry)]) =
-        pixel.memo->point_of(entry);
+    const auto [p, n] = pixel.memo->point_of(entry);
+    pixel.recorder->add_look_up(pixel.pixel_index, pixel.sample, entry, p, n, albedo_over_pi);
 }
 
 class Shader {
@@ -87,7 +83,7 @@ private:
     Rgb direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
                      const LightStrata& strata) const;
     Rgb light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
-                         const LightStrata& strata, PixelTrace* trace) const;
+                         const LightStrata& strata, const PixelSample& pixel) const;
     bool is_flat_mirror(int object) const;
     Rgb trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray& ray, Pcg32& rng) const;
     void shade_diffuse(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo, int depth,
@@ -122,7 +118,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, 
 /// Light reaching glossy point `sp` by one reflection in a flat static mirror (mirror_images.h):
 /// the lights sampled as seen from the point's mirror image, with direct_light's strata.
 Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
-                             const LightStrata& strata, PixelTrace* trace) const {
+                             const LightStrata& strata, const PixelSample& pixel) const {
     Rgb sum;
     for (const MirrorPlane& mirror : m_context.mirrors) {
         const float side = dot(sp.p - mirror.point, mirror.normal);
@@ -140,7 +136,7 @@ Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& bas
             const float t_plane = side / -dot(towards_image, mirror.normal);
             if (is_black(f) || !(t_plane > 0)) continue;
             // The path's reflection lies on the plane: the mirror must be the first surface there.
-            if (trace) trace->add_point(sp.p + towards_image * t_plane);
+            if (pixel.recorder) pixel.recorder->add_point(pixel.pixel_index, sp.p + towards_image * t_plane);
             const Ray to_mirror = spawn_ray(sp.p, sp.ng, towards_image);
             const std::optional<Hit> hit = m_context.tracer.intersect(to_mirror, m_visibility);
             if (!hit || hit->object != mirror.object) continue;
@@ -167,9 +163,9 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const OrthonormalBasis& basis
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
     if (!pixel.skip_direct) c.direct += direct_light(sp, basis, bsdf, wo, strata);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
-    if (depth == 0 && pixel.kept) keep_look_up(pixel, bsdf, albedo_over_pi);
+    if (depth == 0 && pixel.recorder) record_look_up(pixel, bsdf, albedo_over_pi);
     // A diffuse point reads the caustic map, an empty one too: a frame's may not be empty.
-    if (pixel.trace) pixel.trace->flags |= PixelTrace::reads_caustics;
+    if (pixel.recorder) pixel.recorder->add_flags(pixel.pixel_index, PixelRecorder::reads_caustics);
     if (m_caustic.size() == 0) return;  // no specular surface lit: no caustics, nothing to time
     const Stopwatch caustic_time;
     // A caustic estimate is reused by the pixel's other camera rays only where it is smoother than
@@ -201,11 +197,12 @@ Rgb Shader::trace_coat(const Bsdf& coat, const SurfacePoint& surface, const Ray&
 Components Shader::shade(const Ray& ray, int depth, Emission emission, const PixelSample& pixel,
                          const LightStrata& strata, Pcg32& rng) const {
     const std::optional<Hit> hit = m_context.tracer.intersect(ray, m_visibility);
-    if (pixel.trace && depth > 0)
-        pixel.trace->flags |= hit ? PixelTrace::chain : PixelTrace::chain | PixelTrace::open_chain;
+    if (pixel.recorder && depth > 0)
+        pixel.recorder->add_flags(pixel.pixel_index,
+                                  hit ? PixelRecorder::chain : PixelRecorder::chain | PixelRecorder::open_chain);
     if (!hit) return {};
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
-    if (pixel.trace) pixel.trace->add_point(surface.p);
+    if (pixel.recorder) pixel.recorder->add_point(pixel.pixel_index, surface.p);
     Components c = shade_hit(ray, *hit, surface, depth, emission, pixel, strata, rng);
     // Light from a hit inside absorbing glass crossed its volume (the AOV layers are not light).
     const Rgb absorbed = volume_transmittance(m_context, surface, ray.d, hit->t);
@@ -233,10 +230,10 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         // over more, hence the factor 2.
         at.reach = 2 * m_context.frame.camera.pixel_footprint(hit.t);
         if (depth > 0) at.memo = at.caustic_memo = nullptr;
-        if (depth == 0 && pixel.trace) ++pixel.trace->surface_rays;
+        if (depth == 0 && pixel.recorder) pixel.recorder->add_surface_ray(pixel.pixel_index);
         shade_diffuse(sp, basis, bsdf, wo, depth, at, strata, c);
         if (const std::unique_ptr<Bsdf> coat = bsdf.non_diffuse_part()) {
-            if (pixel.trace) pixel.trace->flags |= PixelTrace::coat;
+            if (pixel.recorder) pixel.recorder->add_flags(pixel.pixel_index, PixelRecorder::coat);
             c.specular = trace_coat(*coat, surface, ray, rng);
         }
         return c;
@@ -249,7 +246,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     if (!bsdf.is_delta() && !pixel.skip_direct) {
         const OrthonormalBasis own = OrthonormalBasis::from_normal(surface.nm);
         c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata);
-        c.direct += light_in_mirrors(sp, own, bsdf, own.to_local(-ray.d), strata, pixel.trace);
+        c.direct += light_in_mirrors(sp, own, bsdf, own.to_local(-ray.d), strata, pixel);
     }
     if (depth >= m_settings.max_specular_depth) return c;
     // A flat mirror reached by a glossy bounce reflects light that the glossy point sampled.
@@ -319,39 +316,24 @@ void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
 }
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected,
-                        const PixelReuse& reuse) {
+                        const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, Visibility visibility,
+                        PixelSource* source) {
     const Camera& camera = context.frame.camera;
     ShadedFrame out;
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular})
         *image = Image(camera.width, camera.height);
     for (Image& image : out.extra) image = Image(camera.width, camera.height);
     const int n = settings.samples_per_pixel;
-    if (reuse.keep) {
-        const size_t pixels = size_t(camera.width) * size_t(camera.height);
-        *reuse.keep = {context.frame,
-                       camera.width,
-                       camera.height,
-                       n,
-                       std::vector<PixelSums>(pixels),
-                       std::vector<PixelTrace>(pixels),
-                       std::vector<PixelLookUps>(pixels),
-                       std::vector<uint8_t>(pixels * size_t(n), StaticFrame::no_look_up),
-                       std::vector<Rgb>(pixels * size_t(n))};
-    }
-    const Shader shader(context, settings, caustic, indirect, reflected, reuse.visibility);
+    const Shader shader(context, settings, caustic, indirect, reflected, visibility);
+    PixelRecorder* const recorder = source ? source->recorder() : nullptr;
     const float inv_n = 1.0f / float(n);
     parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
                 const size_t i = size_t(y) * size_t(camera.width) + size_t(x);
-                const PixelWork work = reuse.work ? (*reuse.work)[i] : PixelWork::redo;
                 PixelSums sum;
-                if (work == PixelWork::reuse || work == PixelWork::look_up_again) {
-                    sum = reuse.base->sums[i];
-                    if (reuse.reused_layers) reuse.reused_layers(x, y, reuse.base->traces[i], sum);
-                    if (work == PixelWork::look_up_again) reuse.look_up_again(x, y, i, sum);
-                } else {
+                const PixelSource::Shading shading = source ? source->begin(x, y, i, sum) : PixelSource::Shading::all;
+                if (shading != PixelSource::Shading::none) {
                     // The same numbers for a pixel in every frame: where nothing changes, nothing
                     // flickers (paper §4; bit-identical static regions).
                     Pcg32 constants = pixel_stream(camera, x, y, PixelStream::constants);
@@ -359,10 +341,9 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                     const LightStrata strata{0, uint32_t(n * settings.direct_samples), constants.next_vec2()};
                     PixelMemo memo, caustic_memo;
                     PixelSample pixel{x, y, 0, n, &memo, &caustic_memo};
-                    pixel.trace = reuse.keep ? &reuse.keep->traces[i] : nullptr;
-                    pixel.kept = reuse.keep;
+                    pixel.recorder = recorder;
                     pixel.pixel_index = i;
-                    pixel.skip_direct = work == PixelWork::redo_but_direct;
+                    pixel.skip_direct = shading == PixelSource::Shading::all_but_direct;
                     for (int s = 0; s < n; ++s) {
                         const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
                         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
@@ -375,8 +356,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                             sum.specular += c.specular;
                         for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];
                     }
-                    if (pixel.skip_direct) sum.direct = reuse.base->sums[i].direct;
-                    if (reuse.keep) reuse.keep->sums[i] = sum;
+                    if (source) source->finish(i, sum);
                 }
                 out.direct.at(x, y) = sum.direct * inv_n;
                 out.indirect.at(x, y) = sum.indirect * inv_n;

@@ -68,24 +68,6 @@ private:
     mutable int m_last = -1;
 };
 
-/// What a pixel's shading went through, kept in the static frame so that a later frame can tell
-/// whether the pixel can change (pixel_reuse.h).
-struct PixelTrace {
-    enum Flag : uint8_t {
-        chain = 1,           // some ray went on from a mirror, glass or glossy surface
-        open_chain = 2,      // ...and left the scene
-        coat = 4,            // a coat reflected photon-mapped light (read from the global photons)
-        reads_caustics = 8,  // a diffuse point was shaded: it reads the caustic map (an empty one too)
-        gather = 16,         // the method gathered anew (no cache record reached a point)
-        unkept = 32,         // some camera ray's indirect light is not in the kept look-ups (KeptLookUps)
-    };
-    Vec3 lo{infinity, infinity, infinity}, hi{-infinity, -infinity, -infinity};  // box of every surface point hit
-    uint8_t flags = 0;
-    uint8_t surface_rays = 0;  // camera rays whose first hit is diffuse (they fill the method's layers)
-
-    void add_point(Vec3 p) { lo = min(lo, p), hi = max(hi, p); }
-};
-
 /// A pixel's terms summed over its camera rays (in ray order), before dividing by their count.
 struct PixelSums {
     Rgb direct, indirect, caustic, specular;
@@ -94,37 +76,50 @@ struct PixelSums {
     Rgb sum() const { return direct + indirect + caustic + specular; }
 };
 
-/// Where a pixel's camera rays looked up their indirect light (PixelMemo's entries), so that a
-/// frame can look it up again there without tracing them.
-struct PixelLookUps {
-    std::array<Vec3, PixelMemo::capacity> p, n;
+/// Told what the shading of each pixel goes through, ray by ray: pixel reuse keeps it with its
+/// static frame to tell later which pixels a frame's changes can reach (pixel_reuse.h).
+class PixelRecorder {
+public:
+    enum Flag : uint8_t {
+        chain = 1,           // some ray went on from a mirror, glass or glossy surface
+        open_chain = 2,      // ...and left the scene
+        coat = 4,            // a coat reflected photon-mapped light (read from the global photons)
+        reads_caustics = 8,  // a diffuse point was shaded: it reads the caustic map (an empty one too)
+        gather = 16,         // the method gathered anew (no cache record reached a point)
+        unkept = 32,         // some camera ray's indirect light is not in the kept look-ups
+    };
+
+    virtual ~PixelRecorder() = default;
+    /// A surface point the pixel's rays hit (or, in a mirror, the image of a light they sampled).
+    virtual void add_point(size_t pixel, Vec3 p) = 0;
+    virtual void add_flags(size_t pixel, uint8_t flags) = 0;
+    /// A camera ray whose first hit is diffuse (it fills the method's layers).
+    virtual void add_surface_ray(size_t pixel) = 0;
+    /// Camera ray `sample`'s indirect light is the look-up at (p, n), entry `entry` of its
+    /// pixel's memo, times `albedo_over_pi`.
+    virtual void add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) = 0;
 };
 
-/// The static frame of pixel reuse (pixel_reuse.h): every pixel's sums and trace, shaded with
-/// the dynamic objects removed, and where its camera rays looked up indirect light.
-struct StaticFrame {
-    static constexpr uint8_t no_look_up = 255;
+/// Where shade_frame() takes a pixel's values from when it does not shade every pixel anew
+/// (pixel reuse, pixel_reuse.h): asked before each pixel, told its sums after. Without one, every
+/// pixel is shaded whole. Called from several threads at once, for different pixels.
+class PixelSource {
+public:
+    enum class Shading : uint8_t {
+        none,            // the source gave every term
+        all_but_direct,  // shade it, but the direct light (no shadow rays, no emission) is the source's
+        all,
+    };
 
-    FrameState made_at;                      // the view and lights it was shaded with
-    int width = 0, height = 0, samples = 0;  // samples: camera rays per pixel
-    std::vector<PixelSums> sums;
-    std::vector<PixelTrace> traces;
-    std::vector<PixelLookUps> look_ups;
-    std::vector<uint8_t>
-        ray_look_up;              // per pixel and camera ray: the look-up its indirect light came from, or no_look_up
-    std::vector<Rgb> ray_albedo;  // per pixel and camera ray: the albedo / pi that multiplied it
-
-    static size_t bytes_per_pixel(int samples) {
-        return sizeof(PixelSums) + sizeof(PixelTrace) + sizeof(PixelLookUps) + size_t(samples) * (1 + sizeof(Rgb));
-    }
-};
-
-/// What a frame does with a pixel when it has a static frame.
-enum class PixelWork : uint8_t {
-    reuse,            // every term as the static frame has it
-    look_up_again,    // only the indirect light changes: look it up again where the camera rays did, none traced
-    redo_but_direct,  // shade again, but the direct light (no shadow rays) is the static frame's
-    redo,             // shade again
+    virtual ~PixelSource() = default;
+    /// How much of pixel (x, y), number `pixel` row by row, to shade; with Shading::none it has
+    /// filled `sums`.
+    virtual Shading begin(int x, int y, size_t pixel, PixelSums& sums) = 0;
+    /// The pixel's sums once shaded (not called for Shading::none); with all_but_direct it fills
+    /// their direct light.
+    virtual void finish(size_t pixel, PixelSums& sums) = 0;
+    /// Told what the shading goes through, or null.
+    virtual PixelRecorder* recorder() { return nullptr; }
 };
 
 /// Which camera ray of which pixel is being shaded.
@@ -142,11 +137,10 @@ struct PixelSample {
     /// two lobes both followed) or one of several glossy bounces, where no record reaches a
     /// cheaper estimate then does (photon_gather.h).
     BranchShare share = BranchShare::whole;
-    /// What the pixel's shading goes through, when the static frame is being made.
-    PixelTrace* trace = nullptr;
-    StaticFrame* kept = nullptr;  // ...and where it keeps the pixel's look-ups
-    size_t pixel_index = 0;
-    /// The direct light is taken from the static frame: no emission, no shadow rays.
+    /// Told what the pixel's shading goes through, or null.
+    PixelRecorder* recorder = nullptr;
+    size_t pixel_index = 0;  // row by row
+    /// The direct light is the pixel source's: no emission, no shadow rays.
     bool skip_direct = false;
 };
 
@@ -178,23 +172,11 @@ struct ShadedFrame {
     double caustic_cpu_s = 0;  // time in caustic estimates, summed over threads
 };
 
-/// How shade_frame() treats pixels beyond shading them all: making a static frame, or reusing one.
-struct PixelReuse {
-    Visibility visibility = Visibility::everything;  // static_only: the static frame
-    StaticFrame* keep = nullptr;                     // filled with every pixel's sums and trace
-    const StaticFrame* base = nullptr;               // with `work`: what pixels take from
-    const std::vector<PixelWork>* work = nullptr;    // one per pixel, row by row
-    /// Gives a reused pixel's sums the method's layers that change between frames although its
-    /// terms do not (the localized method's influence).
-    std::function<void(int x, int y, const PixelTrace& trace, PixelSums& sums)> reused_layers;
-    /// Gives a PixelWork::look_up_again pixel's sums (the static frame's) its indirect light and
-    /// the method's layers, looked up again at the static frame's look-ups of pixel `index`.
-    std::function<void(int x, int y, size_t index, PixelSums& sums)> look_up_again;
-};
-
+/// Shades every pixel of the frame, seeing what `visibility` allows (static_only: pixel reuse's
+/// static frame), or, with a `source`, the part of each pixel it asks for.
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
                         const IndirectIrradiance& indirect, const ReflectedRadiance& reflected,
-                        const PixelReuse& reuse = {});
+                        Visibility visibility = Visibility::everything, PixelSource* source = nullptr);
 
 /// Moves the shading pass's common layers into a frame that has members of the same names.
 template <class FrameImages>
