@@ -3,7 +3,7 @@
 corridor.json, mirror_room.json, flythrough.json, glass_move.json and switch_room.json
 (docs/truth-suite.md).
 
-BALL and TABLE follow ../shared/scenes/BALL.md and TABLE.md exactly; their keyframes (one per
+BALL and TABLE follow docs/test-scenes.md exactly; their keyframes (one per
 frame, linear in between) are computed here. The JSON files are committed too, so the renderer
 never needs Python. Run from anywhere: python3 scripts/make_scenes.py
 """

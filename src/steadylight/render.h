@@ -1,6 +1,6 @@
 // render_animation(): the program's table of contents. Load the scene; for each segment, its
 // static pass (when the method has one); for each selected frame of it, the frame pass of the
-// chosen method; then write the frame (DESIGN.md §3).
+// chosen method; then write the frame (docs/design.md).
 #pragma once
 
 #include <optional>

@@ -1,6 +1,6 @@
 // Errors in what the user gave us (scene files, meshes, settings, command-line values), and
 // errors writing the outputs (a full disk, a folder that cannot be written). They carry the file
-// and the place inside it, and are caught once, in main (STYLE.md §5).
+// and the place inside it, and are caught once, in main (docs/style.md).
 #pragma once
 
 #include <stdexcept>

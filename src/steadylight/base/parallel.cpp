@@ -13,7 +13,7 @@
 namespace steadylight {
 
 void set_render_thread_fp_modes() {
-    // Embree's own recommendation: denormals slow traversal badly (DEPENDENCIES.md gotcha 4).
+    // Embree's own recommendation: denormals slow traversal badly.
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }

@@ -1,5 +1,5 @@
 // Deterministic random numbers. Streams are seeded from the work item's identity (frame, pixel,
-// sample), never from the thread, so images do not depend on the thread count (DESIGN.md §2.3).
+// sample), never from the thread, so images do not depend on the thread count (docs/design.md).
 #pragma once
 
 #include <bit>

@@ -1,4 +1,4 @@
-// Checks for the settings structs' validate() functions (STYLE.md §5): each names the setting by
+// Checks for the settings structs' validate() functions (docs/style.md): each names the setting by
 // its place in the settings file's JSON ("/photon/cache/accuracy"), so that a bad value reads the
 // same whether it came from the command line, a test or a benchmark.
 #pragma once

@@ -1,5 +1,5 @@
 // Rigid and scaled placements: unit quaternions for rotation, and affine transforms (3x4
-// matrices) for world_from_object and friends. Compose as `a_from_b * b_from_c` (STYLE.md §2).
+// matrices) for world_from_object and friends. Compose as `a_from_b * b_from_c` (docs/style.md).
 #pragma once
 
 #include "steadylight/base/vec.h"

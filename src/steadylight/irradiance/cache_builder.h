@@ -2,7 +2,7 @@
 // (grid spacing 2^k pixels down to 1), the grid pixels whose surface point is not yet covered by
 // the cache are gathered in parallel against the cache as it stood after the previous level, and
 // the new records are inserted in pixel order. The result does not depend on thread count or
-// scheduling (issue 3, point 3).
+// scheduling.
 #pragma once
 
 #include <cstdint>

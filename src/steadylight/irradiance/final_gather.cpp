@@ -16,7 +16,7 @@
 namespace steadylight {
 namespace {
 
-// Any constant will do: it only has to be the same in every run, frame and machine (DESIGN.md §2.3).
+// Any constant will do: it only has to be the same in every run, frame and machine (docs/design.md).
 constexpr uint64_t fixed_directions_seed = 0x7a3a2002'5eedf00dull;
 
 using Gradient = std::array<Vec3, 3>;

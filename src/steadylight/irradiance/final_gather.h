@@ -23,7 +23,7 @@ namespace steadylight {
 struct GatherSettings {
     int theta_strata = 16;  // M
     int phi_strata = 32;    // N
-    /// Use one jitter set for every gather of every frame (paper §4, DESIGN.md §2.3): the same
+    /// Use one jitter set for every gather of every frame (paper §4, docs/design.md): the same
     /// local directions everywhere, so unchanged surroundings give bit-identical results.
     bool fixed_directions = true;
 };

@@ -104,9 +104,8 @@ float ward_weight(const IrradianceRecord& record, Vec3 p, Vec3 n) {
 
 /// The record's irradiance carried to (p, n) by its gradients. Near contact geometry (a crease
 /// where a wall meets the floor, the foot of a ball) translational gradients grow like
-/// 1 / (nearest distance), and a record carried them far past where they hold: a record 0.7 mm
-/// above blender_glass's floor on its back wall, E 1.22 and R 0.13, gave 0.48 at 1.6 cm, a dark
-/// speck; blender_room's yellow ball was spotted the same way. Over its radius a record's
+/// 1 / (nearest distance), and a record carries them far past where they hold (dark and light
+/// specks along creases: docs/notes/truth-gradient-specks.md). Over its radius a record's
 /// translational change may be at most its own E (Tabellion and Lamorlette 2004 limit the radius
 /// to R <= E / |grad E|; here the radius also serves the spacing and neighbour clamps, so the
 /// gradient is scaled to E / R instead), and the whole change stays within [0, 2 E].

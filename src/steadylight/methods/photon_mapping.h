@@ -1,5 +1,5 @@
 // Two-pass photon mapping with final gathering and an irradiance cache (Jensen 2001; the paper's
-// reference method, DESIGN.md §2.4), every frame from scratch, composed of the passes:
+// reference method, docs/design.md), every frame from scratch, composed of the passes:
 //   frame photons (global and caustic maps) -> irradiance precomputed at photons (Christensen
 //   1999) -> irradiance cache over the image by final gathering -> the shading pass,
 //   L_r = L_d + L_i + L_c + L_s.

@@ -24,7 +24,7 @@ const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 /// the corridor's small lights (direct light noise), 7% with a moving glass ball (18% before) and 9.2-9.5% with a
 /// glossy floor that sees a mirror (14% while the light's image in the mirror was left to the floor's sampled bounces,
 /// 18% while they were one, not four); 4x4 blocks show bias (0.9-1.6% on the diffuse scenes and TABLE since the density
-/// estimate was corrected on 2026-12-01, 2.2-4.6% on the noisy ones). The tolerances are those figures with a margin.
+/// estimate was corrected, 2.2-4.6% on the noisy ones). The tolerances are those figures with a margin.
 /// The path tracer (64 samples) gets 2.5 times the per-pixel figure, mirror_room's its own (34% measured: its glossy
 /// floor's noise).
 struct SceneTolerance {

@@ -1,4 +1,4 @@
-// The frame pass of the localized method (paper §3.1-§3.3; DESIGN.md §2), each frame, from the
+// The frame pass of the localized method (paper §3.1-§3.3; docs/design.md), each frame, from the
 // segment's static solution (segment_cache.h):
 //   photons in the complete scene (global, caustic and dynamic maps; frame_photons.h) ->
 //   influence I of the dynamic objects per pixel (influence.h) -> L_y, a dynamic cache built

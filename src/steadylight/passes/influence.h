@@ -1,4 +1,4 @@
-// The influence of the dynamic objects on each pixel (paper §3.3; DESIGN.md §2.2): a density
+// The influence of the dynamic objects on each pixel (paper §3.3; docs/design.md): a density
 // estimate of the absolute power of the N nearest dynamic photons at the point a pixel's centre
 // sees, relative to the static indirect irradiance there, and the smoothstep blend weight of
 // L_y against L_t that it gives.

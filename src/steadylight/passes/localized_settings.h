@@ -1,4 +1,4 @@
-// The settings of the localized method's own steps (paper §3.3; DESIGN.md §2.2): the influence
+// The settings of the localized method's own steps (paper §3.3; docs/design.md): the influence
 // estimate, the correction of the static records (L_t) and the blend thresholds. The photons,
 // gathers and cache it shares with the photon method are in PhotonMappingSettings.
 #pragma once

@@ -1,7 +1,7 @@
 // Final gathering against a photon map, shared by the photon-mapping method and the localized
 // method's passes: what a gather ray brings back, which point of each pixel gets cached
 // irradiance, building a cache over the camera's image, and the look-up that gathers where no
-// record reaches (DESIGN.md §1, §2.4).
+// record reaches (docs/design.md).
 #pragma once
 
 #include <atomic>

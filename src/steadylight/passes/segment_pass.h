@@ -1,4 +1,4 @@
-// The segment pass of the localized method (paper §3, §3.2; DESIGN.md §2), once per segment:
+// The segment pass of the localized method (paper §3, §3.2; docs/design.md), once per segment:
 // the static photons — the photon paths of the scene with its dynamic objects removed — and,
 // by final gathering against them, the static irradiance cache over every distinct camera view
 // of the segment (the camera path is known in advance). Every frame of the segment starts from

@@ -1,5 +1,5 @@
-// Photon paths kept from the static pass and reused by every frame of the segment (issue 12,
-// point 1; docs/localized.md, "Photon paths reused"). In the spirit of selective photon tracing
+// Photon paths kept from the static pass and reused by every frame of the segment
+// (docs/localized.md, "Photon paths reused"). In the spirit of selective photon tracing
 // (Dmitriev, Brabec, Myszkowski, Seidel 2002), but exact: the static pass keeps every ray of
 // every static photon path (the last one too, whether it leaves the scene or ends at Russian
 // roulette) with what resuming the path there needs. A frame tests these rays against its

@@ -1,4 +1,4 @@
-// A kd-tree over points for k-nearest-neighbour queries within a radius (DESIGN.md §4). Photon
+// A kd-tree over points for k-nearest-neighbour queries within a radius (docs/design.md). Photon
 // maps and the irradiance photons use it; results are sorted by distance, ties broken by index,
 // so queries are deterministic.
 //

@@ -1,5 +1,5 @@
 // How far a rendered image is from a reference: the one figure the truth suite uses everywhere
-// (its tests, bench/quality_bench, the README; DESIGN.md §5). Y is the Rec. 709 luminance of
+// (its tests, bench/quality_bench, the README; docs/design.md). Y is the Rec. 709 luminance of
 // linear RGB, not clamped; the pixels that see an emitter, and a one-pixel border around them,
 // are left out (their values are the light's own, and anti-aliasing there is all noise).
 //   relative RMSE = sqrt(mean (Y - Y_ref)^2) / mean Y_ref, per pixel and after averaging 4x4

@@ -1,5 +1,5 @@
 // The settings a render actually used, written beside its frames as `<out>/<scene>.settings.json`
-// (STYLE.md §5): the scene file, method, image size, every setting of the method, the frames,
+// (docs/style.md): the scene file, method, image size, every setting of the method, the frames,
 // threads, video, steadylight version and date. Its "render" part holds what the images depend
 // on — the scene (name and checksum of the scene file), method, size, --aov, the output settings
 // (EXR pixel type, exposure, view transform, dither; not --video) and the method's settings —

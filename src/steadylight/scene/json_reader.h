@@ -1,6 +1,6 @@
 // Typed, checked reading of a JSON object for the scene loader. Every error names the file and
 // the JSON pointer (`ball.json:/objects/3/radius: expected a number`), and keys that nobody read
-// are reported, which catches misspellings such as "radus" (STYLE.md §5).
+// are reported, which catches misspellings such as "radus" (docs/style.md).
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -1,5 +1,5 @@
 // Scene: the prepared, immutable scene. It owns the SceneDesc, splits objects into static and
-// dynamic and the animation into segments (DESIGN.md §2), and answers `evaluate(frame)`: where
+// dynamic and the animation into segments (docs/design.md), and answers `evaluate(frame)`: where
 // the camera and every object are at that frame, and how bright every light is. It knows
 // nothing of Embree; trace/ builds acceleration structures from it.
 #pragma once
@@ -54,7 +54,7 @@ public:
     const std::vector<int>& static_objects() const { return m_static; }
     const std::vector<int>& dynamic_objects() const { return m_dynamic; }
     int frame_count() const { return m_desc.frame_count; }
-    /// The animation's segments (DESIGN.md §2): one by default; a new one where the scene file
+    /// The animation's segments (docs/design.md): one by default; a new one where the scene file
     /// says, at every frame where an emission or a lamp's intensity differs from the frame
     /// before (a light switched or dimmed), and every frame on its own while an emitter moves
     /// (its light changes every frame). Within a segment the lights are constant.

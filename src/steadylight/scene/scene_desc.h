@@ -1,6 +1,6 @@
 // SceneDesc: the scene as the user described it, loaded from JSON (docs/scene-format.md), from
 // glTF 2.0 or from both. It is plain data with every mesh already read into memory; Scene
-// (scene.h) prepares it for rendering. This is the first stage of the pipeline (DESIGN.md §3).
+// (scene.h) prepares it for rendering. This is the first stage of the pipeline (docs/design.md).
 #pragma once
 
 #include <limits>
@@ -92,7 +92,7 @@ struct ObjectDesc {
     bool is_emitter() const { return emission_track ? is_ever_lit(*emission_track) : !is_black(emission); }
     bool is_emission_animated() const { return emission_track && !emission_track->is_constant(); }
     /// Moving, or marked dynamic. Emission that changes does not count: within a segment it is
-    /// constant (segments split where it changes), so it lights the static scene (DESIGN.md §2).
+    /// constant (segments split where it changes), so it lights the static scene (docs/design.md).
     bool is_dynamic() const { return marked_dynamic || is_chain_animated(placement); }
 };
 

@@ -1,6 +1,6 @@
 // RayTracer: the renderer's only door to Embree (with embree_device.h). Static objects are baked
 // into world space in one scene built once at high quality; dynamic objects are built once each
-// in object space and placed per frame as instances in a second, small scene (STYLE.md §6).
+// in object space and placed per frame as instances in a second, small scene (docs/style.md).
 // A query asks the static scene and then, up to the static hit, the instance scene. Rays can see
 // everything or the static objects only: the static pass and negative photons need the latter.
 #pragma once
