@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs a benchmark and writes what it printed to docs/results/BENCHMARK.md with the machine, the
+# Runs a benchmark and writes what it printed to docs/results/<BENCHMARK>.md with the machine, the
 # date, the commit and the command, so that figures in the documentation are regenerated, never
 # copied by hand (docs/benchmarks.md). Commit the file with the change it measures.
 #   bash bench/results.sh BENCHMARK [ARGS...]
