@@ -7,7 +7,8 @@ Fails (exit 1, one line per problem) on:
   then from src/steadylight/; a bare file name (no folder) may be anywhere in the repository.
   Paths under build/ or out/, absolute paths, and names holding <, * or { are placeholders or
   outputs and are skipped;
-- a comment in code, a script or a build file naming a Markdown document that does not exist.
+- a comment in code, a script or a build file naming a Markdown document that does not exist,
+  or a section of it (`docs/x.md, "Title"`) that it has no heading for.
 
     python3 scripts/check_docs.py [--root DIR]
 """
@@ -22,7 +23,7 @@ PATH_SUFFIXES = ('.h', '.cpp', '.md', '.json', '.sh', '.py', '.mjs', '.glb', '.g
 LINK = re.compile(r'(?<!!)\[[^\]]*\]\(([^)\s]+)\)|!\[[^\]]*\]\(([^)\s]+)\)')
 CODE_SPAN = re.compile(r'(`+)(.+?)\1')
 FENCE = re.compile(r'^\s*(```|~~~)')
-DOC_IN_COMMENT = re.compile(r'[\w./-]*[\w-]\.md\b')
+DOC_IN_COMMENT = re.compile(r'[\w./-]*[\w-]\.md\b(?:, "([^"]+)")?')
 CODE_SUFFIXES = ('.h', '.cpp', '.py', '.sh', '.mjs', '.cmake', '.txt', '.in')
 
 
@@ -48,6 +49,11 @@ def github_anchors(markdown):
         seen[slug] = n + 1
         anchors.add(slug if n == 0 else f'{slug}-{n}')
     return anchors
+
+
+def heading_titles(page):
+    """The titles of a page's headings, in lower case."""
+    return {m.group(1).strip().lower() for m in re.finditer(r'^#{1,6}\s+(.*?)\s*#*\s*$', page.read_text(), re.M)}
 
 
 def prose_lines(markdown):
@@ -117,9 +123,12 @@ def check_comments(root, path, problems):
             doc = match.group(0)
             if re.search(r'[<*{]', doc) or doc.startswith(('build/', 'out/')):
                 continue
-            candidates = [root / doc, root / 'docs' / doc, (root / path).parent / doc]
-            if not any(c.exists() for c in candidates):
+            doc = doc.split(',')[0]
+            candidates = [c for c in (root / doc, root / 'docs' / doc, (root / path).parent / doc) if c.exists()]
+            if not candidates:
                 problems.append(f'{path}:{number}: comment names {doc}, which does not exist')
+            elif match.group(1) and match.group(1).lower() not in heading_titles(candidates[0]):
+                problems.append(f'{path}:{number}: comment names section "{match.group(1)}" of {doc}, which has none')
 
 
 def main():

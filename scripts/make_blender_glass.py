@@ -90,7 +90,7 @@ def build_glass(mat):
     base.box("Frosted Pane", (1.3, 0.03, 1.1), [mat["Frosted"]], location=(2.35, 2.4, 0.75))
     # 1 mm above the floor: glass standing exactly on it meets it in a plane, where a ray finds
     # the glass's bottom and the floor at one distance and either may come first (the path
-    # tracer lost a quarter of the block's blue that way; docs/truth-suite.md).
+    # tracer lost a quarter of the block's blue that way; docs/notes/truth-glass-on-floor.md).
     base.box("Blue Block", (0.35, 0.35, 0.35), [mat["Blue Glass"]], location=(2.8, 1.2, 0.175 + CONTACT_GAP))
 
 

@@ -45,15 +45,14 @@ constexpr SceneTolerance tolerances[] = {
     {"glass_move", 0.26, 0.06},
     {"switch_room", 0.14, 0.035, 15},
     // Until the photons trapped in its closed lamp housings stopped leaking into the estimates
-    // beside them, the photon methods were 2.3-2.4% too bright here (docs/truth-suite.md, "Light
-    // trapped in lamp housings"); measured since (with photon paths of up to 64 bounces and each
-    // gather ray's own random numbers): per pixel 0.034, blocks 0.016, mean 0.6-0.7% high. The
-    // mean within 1%, which the leak fails.
+    // beside them, the photon methods were 2.3-2.4% too bright here (docs/notes/truth-lamp-housings.md); measured since
+    // (with photon paths of up to 64 bounces and each gather ray's own random numbers): per pixel 0.034, blocks 0.016,
+    // mean 0.6-0.7% high. The mean within 1%, which the leak fails.
     {"blender_room", 0.06, 0.025, 0, 0.01},
     // Textures, rough plastics, metals, a normal map and a cut-out screen (docs/materials.md).
     // Measured per pixel 0.097, blocks 0.022-0.023, mean 0.6-0.7% high. It was 2.8-3.1% high with
     // blocks at 0.043-0.046 while gather rays that met one triangle of a coated wall shared their
-    // Russian-roulette choice (docs/truth-suite.md, "The textured Blender room"), and 7-8% with
+    // Russian-roulette choice (docs/notes/truth-gather-random-numbers.md), and 7-8% with
     // the housing's leak. The mean within 1.5%, which both fail.
     {"blender_textured", 0.12, 0.035, 0, 0.015},
     // Rough glass and absorbing glass (KHR_materials_volume), made by Blender (docs/truth-suite.md):

@@ -30,7 +30,7 @@ constexpr int max_specular_chain = 8;
 /// Mirror, glass and glossy bounces a final-gather ray follows, as many as a photon path's
 /// (PhotonSettings::max_bounces): light that rough glass turns to grazing angles is held in it
 /// by total internal reflection for dozens of bounces, and a limit of 4 lost 1.2% of
-/// blender_glass's light behind its frosted pane (docs/truth-suite.md, "Light held in rough glass").
+/// blender_glass's light behind its frosted pane (docs/notes/truth-rough-glass-light.md).
 constexpr int max_gather_chain = 64;
 
 /// The diffuse surface point a pixel's centre sees (seeing what `visibility` allows), where its

@@ -284,7 +284,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     }
     // A glossy surface the camera sees (rough glass above all) is followed along several
     // bounces, each with numbers of its own: through a frosted pane one bounce's noise shows as
-    // grain, a lamp seen through it now and then as a speck (docs/truth-suite.md, "Glass").
+    // grain, a lamp seen through it now and then as a speck (docs/notes/truth-glossy-surfaces.md).
     const int bounces = depth == 0 ? glossy_camera_bounces : 1;
     for (int k = 0; k < bounces; ++k) {
         const std::optional<Bounce> bounce =

@@ -96,7 +96,7 @@ bool same_photons(const PhotonMap& a, const PhotonMap& b);
 class IrradiancePhotons;
 
 /// What a frame's irradiance photons take from the segment's static ones instead of estimating
-/// again (docs/localized.md, "Irradiance at photons reused"): the value at a photon the frame
+/// again (docs/notes/localized-irradiance-at-photons.md): the value at a photon the frame
 /// kept from the static map is the static one where no photon was removed or added within its
 /// estimate's radius and no dynamic object lies within its probes' extent. It is then the same,
 /// bit for bit: the same neighbours in the same order (ties go by index, and the frame's map keeps
@@ -112,7 +112,7 @@ struct StaticIrradianceReuse {
 /// by a hash of the photon itself, so that a photon a frame keeps from the static map carries a
 /// value in both or in neither: the estimate at the photon, which counts itself like any other
 /// photon (right for photons of quasi-random paths, which crowd each other less than random
-/// points: docs/truth-suite.md), divided by the share of its disc on the surface (`coverage`;
+/// points: docs/notes/truth-density-estimate.md), divided by the share of its disc on the surface (`coverage`;
 /// none: the whole disc; its probes turned by the same hash). Lazily: each value is computed the
 /// first time a look-up needs it, then kept. A frame of the localized method looks up only near
 /// its few L_y records, so most values are never needed (compute_all() when they all are), and

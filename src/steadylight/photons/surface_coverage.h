@@ -1,11 +1,11 @@
 // How much of a density estimate's disc lies on the surface: the correction for the boundary
-// bias of photon density estimates (Jensen 2001 §7.3 names it; docs/truth-suite.md measures it).
+// bias of photon density estimates (Jensen 2001 §7.3 names it; docs/notes/truth-density-estimate.md measures it).
 // An estimate divides the power of the photons it finds by the disc's area, pi r^2. Near an edge
 // (a wall meeting the floor, a table's rim, a thin leg) part of that disc is not on the surface,
 // no photon can land there, and the estimate comes out low: at the edge itself by half. Final
 // gather rays land near edges more often than their share of the surfaces (a point near a
 // wall sees that wall's edges close by), so the gathered light came out about 1% dark
-// (docs/truth-suite.md).
+// (docs/notes/truth-density-estimate.md).
 //
 // The disc is probed by rays: 16 points spread over it (two rings of eight, stratified by area,
 // turned by a per-estimate angle so that straight edges are not met at one angle only). A point
@@ -19,7 +19,7 @@
 // photons in the cells whose probe missed, and photons in front of the disc's plane (checked by a
 // ray from the lifted centre), count only if it passes. Without it the light trapped inside a
 // lamp's closed housing against a wall, or hung just under the ceiling, leaked into the
-// estimates beside it (docs/truth-suite.md, "Light trapped in lamp housings").
+// estimates beside it (docs/notes/truth-lamp-housings.md).
 #pragma once
 
 #include <bit>

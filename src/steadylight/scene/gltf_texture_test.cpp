@@ -1,4 +1,4 @@
-// glTF textures (docs/gltf.md, "Textures"): PNG and JPEG images, external and embedded, decoded
+// glTF textures (docs/materials.md, "Textures"): PNG and JPEG images, external and embedded, decoded
 // by stb_image; samplers, KHR_texture_transform, TEXCOORD_0/1, COLOR_0, generated tangents,
 // alpha modes and KHR_materials_specular, read from a hand-written .gltf; the image size limit.
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // materials hold (which image, which texture coordinates, the sampler's wrap modes and filter,
 // and KHR_texture_transform). Sampling is bilinear on the full-resolution image, with sRGB
 // decoded per texel before filtering; there are no mip-maps: a pixel's jittered camera samples
-// filter the texture instead (docs/gltf.md, "Textures"). This sits in scene/ because the ray
+// filter the texture instead (docs/materials.md, "Textures"). This sits in scene/ because the ray
 // tracer's alpha test reads it too.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Light seen in flat mirrors, sampled at glossy surfaces (docs/materials.md, "Light in mirrors").
+// Light seen in flat mirrors, sampled at glossy surfaces (docs/materials.md, "The photon method": light in mirrors).
 // A glossy surface takes direct light by light sampling, but the light it sees reflected in a
 // mirror could only be found by its sampled bounce: a small light's mirror image, found by a few
 // rays out of a pixel's 64, came out as sparkles on a glossy floor beside a mirror. In a flat
