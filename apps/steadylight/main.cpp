@@ -256,33 +256,43 @@ void run_submit(const CLI::App& submit, const CLI::App& bake, int argc, char** a
         result.script_dir.c_str());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    steadylight::keep_freed_memory_mapped();  // frames reuse their large arrays (freed_memory.h)
+/// The command line: its subcommands and the values their options fill.
+struct CommandLine {
     CLI::App app{"steadylight: global-illumination animations with localized final gathering"};
-    app.set_version_flag("--version", std::string("steadylight ") + STEADYLIGHT_VERSION);
-    app.require_subcommand(1);
-
     RenderSettings settings;
     RawOptions raw;
-    CLI::App* render = app.add_subcommand("render", "Render the frames of a scene");
-    add_method_options(render, settings, raw);
-    add_render_options(render, settings, raw);
-    add_output_options(render, settings, raw);
-    render->add_flag("--overwrite", settings.overwrite, "Render frames again whose outputs are complete already");
-    render->add_flag("--require-cache", settings.require_cache,
-                     "A missing or stale static cache file is an error instead of being computed (farm workers)");
-    render->add_flag("--check-complete", settings.check_complete,
-                     "Render nothing: fail listing the selected frames whose outputs are not complete");
-
-    CLI::App* submit = app.add_subcommand("submit",
-                                          "Render the frames on a Slurm cluster: bake, chunk and finishing "
-                                          "jobs (docs/farm.md)");
-    add_method_options(submit, settings, raw);
-    add_render_options(submit, settings, raw);
-    add_output_options(submit, settings, raw);
+    LogOptions log;
     SubmitSettings submit_settings;
+    std::optional<int> bake_segment;
+    std::string info_scene;
+    ReportSettings report_settings;
+    CLI::App* render = nullptr;
+    CLI::App* submit = nullptr;
+    CLI::App* bake = nullptr;
+    CLI::App* info = nullptr;
+    CLI::App* report = nullptr;
+};
+
+void add_render_command(CommandLine& cli) {
+    CLI::App* render = cli.render = cli.app.add_subcommand("render", "Render the frames of a scene");
+    add_method_options(render, cli.settings, cli.raw);
+    add_render_options(render, cli.settings, cli.raw);
+    add_output_options(render, cli.settings, cli.raw);
+    render->add_flag("--overwrite", cli.settings.overwrite, "Render frames again whose outputs are complete already");
+    render->add_flag("--require-cache", cli.settings.require_cache,
+                     "A missing or stale static cache file is an error instead of being computed (farm workers)");
+    render->add_flag("--check-complete", cli.settings.check_complete,
+                     "Render nothing: fail listing the selected frames whose outputs are not complete");
+    add_console_options(render, cli.log);
+}
+
+void add_submit_command(CommandLine& cli) {
+    CLI::App* submit = cli.submit = cli.app.add_subcommand(
+        "submit", "Render the frames on a Slurm cluster: bake, chunk and finishing jobs (docs/farm.md)");
+    add_method_options(submit, cli.settings, cli.raw);
+    add_render_options(submit, cli.settings, cli.raw);
+    add_output_options(submit, cli.settings, cli.raw);
+    SubmitSettings& submit_settings = cli.submit_settings;
     submit->add_option("--chunk", submit_settings.chunk_frames, "Frames per array task (chunks never span segments)")
         ->capture_default_str()
         ->check(CLI::Range(1, 1 << 20));
@@ -292,73 +302,81 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1024));
     submit->add_flag("--dry-run", submit_settings.dry_run,
                      "Write the job scripts and print the sbatch lines; submit nothing");
-    CLI::App* bake = app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
-    add_method_options(bake, settings, raw);
-    std::optional<int> bake_segment;
-    bake->add_option("--segment", bake_segment, "Bake only segment K (0 = the first; see `steadylight info`)");
-    LogOptions log;
-    add_console_options(render, log);
-    add_console_options(bake, log);
-    add_console_options(submit, log);
+    add_console_options(submit, cli.log);
+}
 
-    std::string info_scene;
-    CLI::App* info = app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
-    info->add_option("scene", info_scene, "Scene file (JSON)")->required();
+void add_bake_command(CommandLine& cli) {
+    CLI::App* bake = cli.bake =
+        cli.app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
+    add_method_options(bake, cli.settings, cli.raw);
+    bake->add_option("--segment", cli.bake_segment, "Bake only segment K (0 = the first; see `steadylight info`)");
+    add_console_options(bake, cli.log);
+}
 
-    ReportSettings report_settings;
-    CLI::App* report = app.add_subcommand("report",
-                                          "Write one HTML page about the frames in a folder: "
-                                          "summary tables, statistics plots, contact sheet, AOV layers");
+void add_info_and_report_commands(CommandLine& cli) {
+    cli.info = cli.app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
+    cli.info->add_option("scene", cli.info_scene, "Scene file (JSON)")->required();
+    ReportSettings& report_settings = cli.report_settings;
+    CLI::App* report = cli.report = cli.app.add_subcommand(
+        "report",
+        "Write one HTML page about the frames in a folder: summary tables, statistics plots, contact sheet, "
+        "AOV layers");
     report->add_option("outdir", report_settings.out_dir, "Folder that `render --out` wrote")->required();
     report->add_option("--frame", report_settings.frame, "Frame whose AOV layers are shown (default: the middle one)");
     report->add_option("--out", report_settings.html_file, "HTML file to write (default: OUTDIR/report.html)");
+}
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        // --help and --version exit 0; usage errors exit 2, as most command-line tools do.
-        return app.exit(e) == 0 ? 0 : 2;
+/// Renders the frames and says what was done; 130 when interrupted.
+int run_render(const RenderSettings& settings) {
+    const RenderSummary summary = render_animation(settings);
+    if (summary.interrupted) {
+        print_interrupted(summary, settings.overwrite);
+        return 130;
     }
+    const std::string claimed =
+        summary.frames_claimed_elsewhere.empty()
+            ? ""
+            : fmt::format(", {} left to other processes that claimed them ({})",
+                          summary.frames_claimed_elsewhere.size(), format_frame_list(summary.frames_claimed_elsewhere));
+    spdlog::info("{} frame(s) written, {} complete ones skipped{}, in {} in {:.1f} s", summary.frames_written.size(),
+                 summary.frames_skipped, claimed, settings.out_dir, summary.seconds);
+    return 0;
+}
 
-    try {
-        if (*info) {
-            std::fputs(describe_scene(info_scene).c_str(), stdout);
-            return 0;
-        }
-        if (*report) {
-            spdlog::info("report written to {}", write_report(report_settings));
-            return 0;
-        }
-        setup_logging(log);
-        if (log.quiet) settings.show_progress = false;
-        finish_settings(raw, settings);
-        install_interrupt_handlers();
-        std::unique_ptr<tbb::global_control> thread_limit;
-        if (raw.threads > 0)
-            thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                                 size_t(raw.threads));
-        if (*submit) {
-            run_submit(*submit, *bake, argc, argv, settings, submit_settings);
-            return 0;
-        }
-        if (*bake) {
-            for (const std::string& file : bake_static_caches(settings, bake_segment))
-                spdlog::info("static cache: {}", file);
-            return 0;
-        }
-        const RenderSummary summary = render_animation(settings);
-        if (summary.interrupted) {
-            print_interrupted(summary, settings.overwrite);
-            return 130;
-        }
-        const std::string claimed = summary.frames_claimed_elsewhere.empty()
-                                        ? ""
-                                        : fmt::format(", {} left to other processes that claimed them ({})",
-                                                      summary.frames_claimed_elsewhere.size(),
-                                                      format_frame_list(summary.frames_claimed_elsewhere));
-        spdlog::info("{} frame(s) written, {} complete ones skipped{}, in {} in {:.1f} s",
-                     summary.frames_written.size(), summary.frames_skipped, claimed, settings.out_dir, summary.seconds);
+/// Runs the command the line chose; its exit code.
+int run_command(CommandLine& cli, int argc, char** argv) {
+    if (*cli.info) {
+        std::fputs(describe_scene(cli.info_scene).c_str(), stdout);
         return 0;
+    }
+    if (*cli.report) {
+        spdlog::info("report written to {}", write_report(cli.report_settings));
+        return 0;
+    }
+    setup_logging(cli.log);
+    if (cli.log.quiet) cli.settings.show_progress = false;
+    finish_settings(cli.raw, cli.settings);
+    install_interrupt_handlers();
+    std::unique_ptr<tbb::global_control> thread_limit;
+    if (cli.raw.threads > 0)
+        thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                             size_t(cli.raw.threads));
+    if (*cli.submit) {
+        run_submit(*cli.submit, *cli.bake, argc, argv, cli.settings, cli.submit_settings);
+        return 0;
+    }
+    if (*cli.bake) {
+        for (const std::string& file : bake_static_caches(cli.settings, cli.bake_segment))
+            spdlog::info("static cache: {}", file);
+        return 0;
+    }
+    return run_render(cli.settings);
+}
+
+/// The message and exit code of the error being handled: errors are caught once, here.
+int report_error() {
+    try {
+        throw;
     } catch (const RenderInterrupted&) {
         std::fputs("steadylight: interrupted\n", stderr);
         return 130;
@@ -375,5 +393,29 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::fprintf(stderr, "steadylight: internal error: %s\n", e.what());
         return 1;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    steadylight::keep_freed_memory_mapped();  // frames reuse their large arrays (freed_memory.h)
+    CommandLine cli;
+    cli.app.set_version_flag("--version", std::string("steadylight ") + STEADYLIGHT_VERSION);
+    cli.app.require_subcommand(1);
+    add_render_command(cli);
+    add_submit_command(cli);
+    add_bake_command(cli);
+    add_info_and_report_commands(cli);
+    try {
+        cli.app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help and --version exit 0; usage errors exit 2, as most command-line tools do.
+        return cli.app.exit(e) == 0 ? 0 : 2;
+    }
+    try {
+        return run_command(cli, argc, argv);
+    } catch (...) {
+        return report_error();
     }
 }
