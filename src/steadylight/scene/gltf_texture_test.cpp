@@ -9,7 +9,6 @@
 #include <string>
 
 #include "steadylight/base/error.h"
-#include "steadylight/output/image_writer.h"
 #include "steadylight/scene/gltf_loader.h"
 #include "steadylight/scene/image_decoding.h"
 #include "support/input_error.h"
@@ -175,7 +174,13 @@ TEST_F(GltfTexture, UndecodableImageLeavesItsTexturesOut) {
 // A chunk whose length runs past the end of the file (a truncated PNG) is refused before
 // stb_image allocates that length (a fuzzing finding: 1.4 GB for a 152-byte file).
 TEST(ImageDecoding, PngChunkRunningPastTheEndIsADamagedImage) {
-    std::vector<unsigned char> bytes = encode_png(Image(16, 16));
+    std::vector<unsigned char> bytes;
+    const std::vector<unsigned char> black(16 * 16 * 3, 0);
+    const auto append = [](void* to, void* data, int size) {
+        auto* out = static_cast<std::vector<unsigned char>*>(to);
+        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    };
+    ASSERT_TRUE(stbi_write_png_to_func(append, &bytes, 16, 16, 3, black.data(), 16 * 3));
     EXPECT_TRUE(decode_image(bytes.data(), bytes.size()).problem.empty());
     const std::vector<unsigned char> whole = bytes;
     bytes.resize(bytes.size() - 20);  // into the IDAT chunk

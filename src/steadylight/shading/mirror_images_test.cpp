@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include "steadylight/passes/shading_pass.h"
 #include "support/scene_builder.h"
 
 namespace steadylight {
@@ -31,57 +30,6 @@ TEST(FlatMirrors, OnlyFlatStaticMirrorsAreFoundWherePlaced) {
     EXPECT_EQ(found[0].object, flat);
     EXPECT_FLOAT_EQ(found[0].point.x, 3);
     EXPECT_NEAR(std::abs(found[0].normal.x), 1, 1e-6);
-}
-
-/// A glossy floor (y = 0, x in [0, 4]) under a small light at x = 2, seen looking towards x = 0
-/// (where its glossy reflection sees the light's image): with a mirror in the plane x = 0, or
-/// with the light's mirror image (at x = -2, dimmed by the mirror's reflectance) in its place.
-SceneDesc glossy_floor_beside(bool mirror) {
-    SceneDesc desc = make_empty_scene({4, 1.5f, 1}, {1, 0, 1}, 8, 8, 30);
-    const int glossy =
-        add_material(desc, {.type = MaterialType::glossy, .reflectance = {0.5f, 0.5f, 0.5f}, .roughness = 0.35f});
-    add_object(desc, make_quad({0, 0, -4}, {0, 0, 8}, {4, 0, 0}), glossy);
-    const Rgb Le{20, 20, 20};
-    const auto light_at = [&](float x, Rgb emission) {
-        add_object(desc, make_quad({x - 0.25f, 2.5f, 0.75f}, {0.5f, 0, 0}, {0, 0, 0.5f}), add_material(desc, {}),
-                   emission);
-    };
-    light_at(2, Le);
-    if (mirror) {
-        const int reflect = add_material(desc, {.type = MaterialType::mirror, .reflectance = {0.9f, 0.9f, 0.9f}});
-        add_object(desc, make_quad({0, 0, -4}, {0, 6, 0}, {0, 0, 8}), reflect);
-    } else {
-        light_at(-2, Le * 0.9f);
-    }
-    return desc;
-}
-
-/// The mean of the direct layer over the image, by the shading pass alone (no indirect light).
-double mean_direct_light(const SceneDesc& desc) {
-    const Scene scene(desc);
-    const PreparedFrame frame(scene, 0);
-    ShadingSettings settings;
-    settings.samples_per_pixel = 64;
-    settings.direct_samples = 16;
-    const auto none = [](auto&&...) { return Rgb{}; };
-    const ShadedFrame shaded = shade_frame(frame.context(), settings, PhotonMap{}, none, none);
-    double sum = 0;
-    for (const Rgb& c : shaded.direct.pixels) sum += luminance(c);
-    return sum / double(shaded.direct.pixels.size());
-}
-
-// The light a glossy floor sees in a flat mirror is sampled as a light (its image), so it is the
-// image's direct light, not left to the floor's sampled bounce (which gave sparkles). The image
-// is rendered alone and added: the light and its image in one scene would test the choice
-// between two lights too.
-TEST(MirrorImages, GlossyFloorTakesTheLightInAMirrorAsItsImagesDirectLight) {
-    const double with_mirror = mean_direct_light(glossy_floor_beside(true));
-    SceneDesc light_alone = glossy_floor_beside(false), image_alone = light_alone;
-    light_alone.objects.pop_back();
-    image_alone.objects.erase(image_alone.objects.begin() + 1);
-    const double light = mean_direct_light(light_alone), image = mean_direct_light(image_alone);
-    EXPECT_GT(image, light);  // the image's share is large enough to test
-    EXPECT_NEAR(with_mirror / (light + image), 1, 0.01);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// The localized method's passes: the segment pass, its cache file, and the frame pass
-// (localized and frozen) against photon mapping, bit-identical static regions and threads.
+// The localized method (the frame pass, localized and frozen) and its segment pass and cache
+// file: against photon mapping, bit-identical static regions, threads, light switched on.
 #include "steadylight/passes/frame_pass.h"
 
 #include <gtest/gtest.h>

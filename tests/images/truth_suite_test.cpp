@@ -1,7 +1,8 @@
 // The truth suite in CI: every suite scene, rendered small by every method, against its
 // converged path-traced reference (tests/scenes/golden/, scripts/make_golden.sh: 80x60, 4096
 // samples per pixel), with the suite's error figure (quality/image_error.h). The full-size
-// references and figures are bench/quality_bench's.
+// references and figures are bench/quality_bench's. A frame that fails leaves its picture, the
+// reference and their difference under the build folder (support/failure_pictures.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include "steadylight/output/image_writer.h"
 #include "steadylight/passes/segment_pass.h"
 #include "steadylight/quality/image_error.h"
+#include "support/failure_pictures.h"
 
 namespace steadylight {
 namespace {
@@ -158,6 +160,7 @@ TEST_P(TruthSuite, FrameAgreesWithTheReference) {
         std::printf("  through glass (%ld pixels): mean ratio %.4f\n", glass_pixels, glass);
         EXPECT_NEAR(glass, 1.0, 0.1);
     }
+    testing::keep_pictures_if_failed(rendered.beauty, reference);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TruthSuite, ::testing::ValuesIn(all_cases()), case_name);
