@@ -1,16 +1,23 @@
 #!/usr/bin/env bash
 # Opens a `steadylight report` page in headless Chromium (Debian's `chromium`), with every
 # host name unresolvable so that nothing can come from the network, and checks that it rendered:
-# every image decoded, the SVG plots are in the DOM with points, and a screenshot is not blank.
-#   scripts/check_report.sh REPORT.html [SCREENSHOT.png]   (default screenshot: REPORT.png)
-# Exit status: 0 when it rendered, 1 when a check failed, 77 when chromium is not installed
-# (CTest reports the test as skipped).
+# every image decoded, the SVG plots are in the DOM with points, the page holds each --expect
+# text (a plot's legend, a table's column), and a screenshot is not blank.
+#   scripts/check_report.sh [--expect TEXT]... REPORT.html [SCREENSHOT.png]   (default: REPORT.png)
+# Exit status: 0 when it rendered, 1 when a check failed; without chromium 77 (CTest reports the
+# test as skipped), or 1 under CI=true, where a check that cannot run fails.
 set -euo pipefail
-report=${1:?usage: check_report.sh REPORT.html [SCREENSHOT.png]}
+expected=()
+while [ "${1:-}" == --expect ]; do
+  expected+=("$2")
+  shift 2
+done
+report=${1:?usage: check_report.sh [--expect TEXT]... REPORT.html [SCREENSHOT.png]}
 screenshot=${2:-${report%.html}.png}
 
 browser=$(command -v chromium || command -v chromium-browser || true)
-[ -n "$browser" ] || { echo "SKIP: chromium is not on PATH (Debian: apt-get install chromium)"; exit 77; }
+source "$(dirname "$0")/../tests/support/skip.sh"
+[ -n "$browser" ] || skip_without_tool "chromium is not on PATH (Debian: apt-get install chromium)"
 [ -s "$report" ] || { echo "FAIL: no report at $report"; exit 1; }
 url="file://$(realpath "$report")"
 profile=$(mktemp -d)
@@ -30,6 +37,9 @@ frames=$(grep -o '<figure class="frame"' <<<"$dom" | wc -l)
 tables=$(grep -o '<table' <<<"$dom" | wc -l)
 [ "$plots" -ge 2 ] && [ "$lines" -ge 2 ] || fail "plots in the DOM: $plots, lines with points: $lines"
 [ "$frames" -ge 1 ] && [ "$tables" -ge 1 ] || fail "frames: $frames, tables: $tables"
+for text in "${expected[@]}"; do
+  grep -qF -- "$text" <<<"$dom" || fail "the page lacks: $text"
+done
 
 # A screenshot of the top of the page must show more than a blank page: count distinct rows of
 # pixels (a blank page has one or two).

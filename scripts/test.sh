@@ -12,8 +12,8 @@
 #       and reads tests/sanitizers/thread_suppressions.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# What the tests need beyond the build: clang-format (repo.format).
-bash scripts/setup.sh clang-format
+# What the tests need beyond the build: clang-format (repo.format), Chromium (cli.report_chromium).
+bash scripts/setup.sh clang-format chromium
 
 # Tests over 10 s each under the address and undefined sanitizers (60% of that suite's time):
 # the kill-and-resume and farm runs, the truth suite's renders, the longest animation tests.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Output folders that fail: a full disk and a read-only file system (small tmpfs mounts, so
-# root only: skipped, saying why, where mounting is not possible), a cache file that is a folder
+# root only: skipped, saying why, where mounting is not possible, and failed under CI=true), a cache file that is a folder
 # and an output path through a file. A full disk stops the render with a clear error naming the
 # file (not an internal error), leaves no truncated final file (every image present equals an
 # uninterrupted render's), and the same command resumes once there is space. The others are
@@ -8,6 +8,7 @@
 set -euo pipefail
 binary=$1 source=$2 out=$3
 scene=$source/scenes/ball.json
+source "$source/tests/support/skip.sh"
 args=(--frames 0-9 --size 160x120 --spp 2 --photons 5000 --caustic-photons 0 --gather-samples 32 --no-progress)
 fail() { echo "FAIL: $*"; exit 1; }
 expect_error() {  # expect_error LOG REGEX: exit status 1 was seen; the log holds REGEX and no internal error
@@ -33,8 +34,7 @@ expect_error "$out/through_file.log" "error: --out: .*a_file/frames: cannot crea
 needed_kb=$(du -sk "$out/A" | cut -f1)
 
 if ! mount -t tmpfs -o size=$((needed_kb / 2))k tmpfs "$out/disk" 2> "$out/mount.log"; then
-  echo "full disk and read-only folder: skipped (cannot mount a tmpfs here: $(cat "$out/mount.log"))"
-  exit 77
+  skip_without_tool "full disk and read-only folder: cannot mount a tmpfs here: $(cat "$out/mount.log")"
 fi
 
 # A disk with room for half the outputs.

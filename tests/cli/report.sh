@@ -2,8 +2,9 @@
 # Renders three tiny BALL frames with the localized method, writes `steadylight report` for
 # them and checks the page: every frame in the contact sheet, plots with a point per frame, the
 # summary table, the AOV layers, nothing fetched from the network; then --frame, --out, a
-# report on path-traced frames and bad input. The page it leaves in OUT/report.html is what
-# cli.report_chromium opens.
+# report on path-traced frames, a folder of several methods, a folder the release before wrote,
+# and bad input. The pages it leaves (OUT/report.html, OUT/mixed/, OUT/older/) are what
+# cli.report_chromium opens (report_chromium.sh).
 set -euo pipefail
 binary=$1 source=$2 out=$3
 
@@ -43,6 +44,32 @@ has '<th>camera samples (path)</th><td>192.0</td>' "$path_html"
 ! grep -qF 'No frame statistics' "$path_html" || fail "no statistics for the path frames"
 grep -o '<polyline[^>]*data-series="path"[^>]*points="[^"]*"' "$path_html" | head -1 | grep -qE 'points="[^ ]+ [^ ]+"' \
   || fail "no time plot with two points for the path frames"
+
+# One folder with several methods: frames 0-1 localized, 2-3 photon, 4-5 path-traced. The tables
+# compare each method with the photon method, the plots have a line per method.
+mixed=$out/mixed
+small=(--spp 1 --size 40x30 --photons 2000 --caustic-photons 0 --gather-samples 32 --no-progress --out "$mixed")
+"$binary" render "$source/scenes/ball.json" --frames 0-1 "${small[@]}"
+"$binary" render "$source/scenes/ball.json" --frames 2-3 --method photon --overwrite "${small[@]}"
+"$binary" render "$source/scenes/ball.json" --frames 4-5 --method path --overwrite "${small[@]}"
+"$binary" report "$mixed"
+for column in '<th>photon / localized</th>' '<th>photon / path</th>'; do has "$column" "$mixed/report.html"; done
+for series in localized photon path; do has "data-series=\"$series\"" "$mixed/report.html"; done
+
+# A folder as the release before wrote it: the shading time under seconds.direct.
+older=$out/older
+mkdir -p "$older" && cp "$out"/ball_000[0-2].* "$older/"
+for stats in "$older"/*.stats.json; do
+  python3 - "$stats" <<'PY'
+import json, sys
+stats = json.load(open(sys.argv[1]))
+stats["seconds"]["direct"] = stats["seconds"].pop("shading")
+json.dump(stats, open(sys.argv[1], "w"))
+PY
+done
+"$binary" report "$older"
+has "<th>localized</th>" "$older/report.html"
+grep -qF '"shading":' "$older/ball_0000.stats.json" && fail "the older folder still has seconds.shading"
 
 # Bad input: a clear message naming what is wrong, exit status 1.
 expect_error() {  # expect_error REGEX ARGS...

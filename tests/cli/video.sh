@@ -3,11 +3,12 @@
 # with ffmpeg and checks with ffprobe that the MP4 is H.264, yuv420p, 3 frames at the scene's
 # frame rate, with odd image sizes padded to even; that a resumed run encodes the PNGs of the
 # frames it skipped too; and that a video ffmpeg cannot write is an error that keeps the frames.
-# Exits 77 (CTest SKIPPED) without ffmpeg.
+# Without ffmpeg it is skipped (exit 77), or fails under CI=true.
 set -euo pipefail
 binary=$1 source=$2 out=$3
+source "$source/tests/support/skip.sh"
 
-command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null || { echo "ffmpeg/ffprobe not installed: skipped"; exit 77; }
+command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null || skip_without_tool "ffmpeg/ffprobe not installed"
 rm -rf "$out"
 mkdir -p "$out"
 "$binary" render "$source/scenes/ball.json" --method path --frames 5-7 --spp 1 --size 41x31 \
