@@ -9,11 +9,16 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "steadylight/base/error.h"
+
 namespace steadylight {
 
 FileLock::FileLock(const std::string& path) : m_path(path) {
-    m_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-    if (m_fd < 0) throw std::runtime_error("cannot open the lock file " + path + ": " + std::strerror(errno));
+    m_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
+    // Not through a symbolic link (atomic_file.h): a link put there by someone else fails here.
+    if (m_fd < 0)
+        throw OutputError(path, std::string("cannot open it as a lock file: ") + std::strerror(errno) +
+                                    (errno == ELOOP ? " (it is a symbolic link)" : ""));
     int result = 0;
     while ((result = ::flock(m_fd, LOCK_EX)) != 0 && errno == EINTR) {
     }

@@ -24,6 +24,8 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include "steadylight/base/atomic_file.h"
+#include "steadylight/base/error.h"
 #include "steadylight/base/file_lock.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/run/settings_file.h"
@@ -87,7 +89,11 @@ bool write_claim(const std::string& path, bool replace) {
                                  {"pid", ::getpid()},
                                  {"time", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::time(nullptr)))}};
     const std::string temporary = fmt::format("{}.{}-{}.tmp", path, host_name(), ::getpid());
-    std::ofstream(temporary) << json.dump() << "\n";
+    try {
+        write_new_file(temporary, json.dump() + "\n");
+    } catch (const std::exception& e) {
+        throw OutputError(temporary, e.what());
+    }
     std::error_code ignored;
     if (replace) {
         fs::rename(temporary, path);

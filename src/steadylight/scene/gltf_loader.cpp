@@ -408,6 +408,7 @@ SceneDesc load_gltf_scene_desc(const std::string& path) {
     SceneDesc desc;
     desc.source_file = path;
     desc.name = std::filesystem::path(path).stem().string();
+    check_scene_name(desc.name, path);
     bool has_camera = false;
     const float duration_s = append_gltf(path, desc, has_camera);
     if (!has_camera)

@@ -340,6 +340,32 @@ bool is_ever_lit(const Track<Rgb>& track) {
     return std::any_of(track.values.begin(), track.values.end(), [](Rgb value) { return !is_black(value); });
 }
 
+namespace {
+
+/// `text` as a message may show it: control characters as \xNN, and at most 60 bytes.
+std::string printable(const std::string& text) {
+    std::string out;
+    for (const char c : text.substr(0, 60))
+        out += (unsigned char)c < 0x20 || c == 0x7f ? fmt::format("\\x{:02x}", (unsigned char)c) : std::string(1, c);
+    return text.size() > 60 ? out + "..." : out;
+}
+
+}  // namespace
+
+void check_scene_name(const std::string& name, const std::string& where) {
+    const auto refuse = [&](const std::string& why) {
+        throw InputError(where,
+                         fmt::format("the scene name \"{}\" {}: it names the output files", printable(name), why));
+    };
+    if (name.empty()) refuse("is empty");
+    if (name == "." || name == "..") refuse("is a folder's name");
+    if (name.find_first_of("/\\") != std::string::npos) refuse("holds a path separator");
+    if (std::any_of(name.begin(), name.end(), [](char c) { return (unsigned char)c < 0x20 || c == 0x7f; }))
+        refuse("holds a control character");
+    if (name.size() > max_scene_name_bytes)
+        refuse(fmt::format("is {} bytes long, more than {}", name.size(), max_scene_name_bytes));
+}
+
 void validate(const SceneDesc& desc) {
     const std::string& file = desc.source_file;
     if (desc.frame_count < 1) throw InputError(file, "the scene has no frames");
@@ -404,6 +430,7 @@ SceneDesc load_scene_desc(const std::string& path) {
     SceneDesc desc;
     desc.source_file = path;
     desc.name = root.string("name", fs::path(path).stem().string());
+    check_scene_name(desc.name, path + ":/name");
 
     // A glTF file brings objects, materials, a camera and animations; the JSON adds to them.
     float gltf_duration_s = 0;

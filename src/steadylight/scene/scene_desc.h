@@ -159,6 +159,18 @@ std::string describe_fps_source(const SceneDesc& desc);
 /// kept in memory.
 constexpr int max_frame_count = 1000000;
 
+/// The longest scene name. The name starts every file a run writes into its output folder, and
+/// the longest of those must fit the file-name limit (255 bytes): a frame claim's temporary file,
+/// `<name>_<frame>.claim.<host>-<pid>.tmp`, adds at most 91 bytes (7 frame digits, a 64-byte host
+/// name, a 7-digit pid); the others fewer (`<name>_<frame>.dynamic_records.png.partial`: 36).
+constexpr size_t max_scene_name_bytes = 128;
+
+/// Throws InputError naming `where` when `name` cannot be a scene's name: empty, `.` or `..`,
+/// holding a path separator, a control character or a NUL, or longer than max_scene_name_bytes.
+/// Output paths are made from it, so that nothing is written outside the output folder; the
+/// loaders check the name a file gives (or the file's own name).
+void check_scene_name(const std::string& name, const std::string& where);
+
 /// Checks what no single loader can: indices in range, finite numbers, emitters with area,
 /// well-formed emission and intensity tracks.
 void validate(const SceneDesc& desc);

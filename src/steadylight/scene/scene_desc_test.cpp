@@ -220,6 +220,29 @@ TEST_F(SceneFiles, FileNameTooLongIsNotFound) {
                  {"not found"});
 }
 
+// The name starts every output file's name: one that could lead a path out of the output folder,
+// or make a name the file system refuses, is an error naming /name.
+TEST_F(SceneFiles, SceneNameThatCannotNameAFileIsRefused) {
+    const std::pair<std::string, std::string> cases[] = {
+        {R"("../escaped")", "holds a path separator"},
+        {R"("x<script>alert(1)</script>")", "holds a path separator"},
+        {R"("a\\b")", "holds a path separator"},
+        {R"("..")", "is a folder's name"},
+        {R"(".")", "is a folder's name"},
+        {R"("")", "is empty"},
+        {R"("bell\u0007")", "holds a control character"},
+        {R"("nul\u0000byte")", "holds a control character"},
+        {'"' + std::string(max_scene_name_bytes + 1, 'n') + '"', "129 bytes long, more than 128"},
+    };
+    for (const auto& [name, why] : cases)
+        expect_error(write_scene(floor_quad, R"(, "name": )" + name), {"scene.json:/name", why});
+    // The longest name allowed, and names with spaces, dots and markup but no separator, are fine.
+    EXPECT_EQ(load_scene_desc(write_scene(floor_quad, R"(, "name": ")" + std::string(max_scene_name_bytes, 'n') + '"'))
+                  .name.size(),
+              max_scene_name_bytes);
+    EXPECT_EQ(load_scene_desc(write_scene(floor_quad, R"(, "name": "a <b> & c.d")")).name, "a <b> & c.d");
+}
+
 TEST_F(SceneFiles, SyntaxErrorNamesTheFile) {
     expect_error(write("bad.json", "{\"camera\": "), {"bad.json", "invalid JSON"});
 }
