@@ -6,6 +6,8 @@
 // Spec: https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html
 #include "steadylight/scene/gltf_loader.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <climits>
@@ -18,6 +20,7 @@
 
 #include <fmt/format.h>
 
+#include "steadylight/base/input_file.h"
 #include "steadylight/scene/gltf_accessors.h"
 #include "steadylight/scene/gltf_animation.h"
 #include "steadylight/scene/gltf_materials.h"
@@ -83,20 +86,46 @@ bool decode_gltf_image(tinygltf::Image* image, const int index, std::string* err
     return true;
 }
 
+/// tinygltf's file callbacks: external buffers and images are read as every input file is
+/// (base/input_file.h: regular files only), and nothing is ever written.
+tinygltf::FsCallbacks input_file_callbacks() {
+    tinygltf::FsCallbacks callbacks{};
+    callbacks.FileExists = [](const std::string& path, void*) {
+        struct stat status {};
+        return ::stat(path.c_str(), &status) == 0;
+    };
+    callbacks.ExpandFilePath = [](const std::string& path, void*) { return path; };
+    callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+        try {
+            const std::string bytes = read_input_file(path);
+            out->assign(bytes.begin(), bytes.end());
+            return true;
+        } catch (const InputError& e) {
+            if (err) *err += std::string(e.what()) + "\n";
+            return false;
+        }
+    };
+    callbacks.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
+        return false;
+    };
+    return callbacks;
+}
+
 tinygltf::Model load_model(const std::string& path) {
     const std::string ext = lowercase_extension(path);
     if (ext != ".gltf" && ext != ".glb")
         throw InputError(path, "unknown glTF file extension \"" + ext + "\" (expected .gltf or .glb)");
-    // The error_code form: a name too long for the file system is "not found", not an exception
-    // from the standard library (a fuzzing finding).
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(path, error)) throw InputError(path, "file not found");
+    const std::string bytes = read_input_file(path);
+    const std::string base_dir = std::filesystem::path(path).parent_path().string();
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     loader.SetImageLoader(decode_gltf_image, &model);
+    loader.SetFsCallbacks(input_file_callbacks());
     std::string err, warn;
-    const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                                  : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const bool ok =
+        ext == ".glb" ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(bytes.size()), base_dir)
+                      : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
     if (!warn.empty()) spdlog::warn("{}: {}", path, trim_newlines(warn));
     if (!ok) throw InputError(path, err.empty() ? "cannot read the glTF file" : trim_newlines(err));
     return model;

@@ -4,6 +4,7 @@
 #include "steadylight/scene/gltf_loader.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <tiny_gltf.h>
 
 #include <cmath>
@@ -769,6 +770,20 @@ TEST_F(GltfLoader, GlbWithoutCameraCannotBeAScene) {
 
 TEST_F(GltfLoader, MissingFileThrowsInputErrorNamingIt) {
     expect_input_error((m_dir / "absent.glb").string(), "not found");
+}
+
+// External buffers and images are read as every input file is: only regular files (a buffer
+// named by a path up to /dev/zero, or a FIFO beside the file, is refused, not read).
+TEST_F(GltfLoader, ExternalBufferThatIsADeviceOrAFifoIsRefusedNotRead) {
+    const auto with_buffer = [&](const std::string& uri) {
+        const std::string path = (m_dir / "external.gltf").string();
+        std::ofstream(path) << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" + uri +
+                                   R"(", "byteLength": 4}]})";
+        return path;
+    };
+    expect_input_error(with_buffer(fs::relative("/dev/zero", m_dir).string()), "not a regular file: it is a device");
+    ASSERT_EQ(::mkfifo((m_dir / "pipe.bin").c_str(), 0600), 0);
+    expect_input_error(with_buffer("pipe.bin"), "pipe.bin: not a regular file: it is a FIFO");
 }
 
 TEST_F(GltfLoader, UnknownExtensionThrowsInputError) {

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "steadylight/base/error.h"
+#include "steadylight/base/input_file.h"
 
 namespace steadylight {
 
@@ -158,10 +159,9 @@ void JsonObject::warn_unread() const {
 }
 
 json parse_json_file(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "cannot open file");
+    const std::string text = read_input_file(path);
     try {
-        return json::parse(in);
+        return json::parse(text);
     } catch (const json::exception& e) {
         throw InputError(path, std::string("invalid JSON: ") + e.what());
     }

@@ -183,7 +183,11 @@ Geometry parse_shape(const JsonObject& json) {
         const std::string file = resolve_path(json, "file");
         std::error_code error;  // a name too long for the file system is "not found" too
         if (!fs::exists(file, error)) json.fail("file", "mesh file \"" + file + "\" not found");
-        geometry = load_obj_mesh(file);
+        try {
+            geometry = load_obj_mesh(file);
+        } catch (const InputError& e) {
+            json.fail("file", e.what());  // the mesh's own message, and where the scene names it
+        }
     } else {
         json.fail("type", "unknown shape type \"" + type + "\" (quad, box, sphere, mesh)");
     }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -241,6 +243,19 @@ TEST_F(SceneFiles, SceneNameThatCannotNameAFileIsRefused) {
                   .name.size(),
               max_scene_name_bytes);
     EXPECT_EQ(load_scene_desc(write_scene(floor_quad, R"(, "name": "a <b> & c.d")")).name, "a <b> & c.d");
+}
+
+// Only regular files are read: a device never ends (reading /dev/zero as a mesh ran until
+// killed) and a FIFO blocks its reader; both are refused at once, naming the file.
+TEST_F(SceneFiles, MeshThatIsADeviceOrAFifoIsRefusedNotRead) {
+    expect_error(write_scene(R"({"shape": {"type": "mesh", "file": "/dev/zero"}, "material": "white"})"),
+                 {"/dev/zero", "not a regular file: it is a device"});
+    ASSERT_EQ(::mkfifo((m_dir / "pipe.obj").c_str(), 0600), 0);
+    expect_error(write_scene(R"({"shape": {"type": "mesh", "file": "pipe.obj"}, "material": "white"})"),
+                 {"pipe.obj", "not a regular file: it is a FIFO"});
+    ASSERT_EQ(::mkfifo((m_dir / "pipe.json").c_str(), 0600), 0);
+    expect_error((m_dir / "pipe.json").string(), {"pipe.json", "it is a FIFO"});
+    expect_error(m_dir.string(), {"it is a folder"});
 }
 
 TEST_F(SceneFiles, SyntaxErrorNamesTheFile) {

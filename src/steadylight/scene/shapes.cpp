@@ -11,6 +11,7 @@
 #include <tiny_obj_loader.h>
 
 #include "steadylight/base/error.h"
+#include "steadylight/base/input_file.h"
 
 namespace steadylight {
 
@@ -78,10 +79,7 @@ namespace {
 /// tinyobjloader ends them: at "\n", "\r\n" or a lone "\r" (a `vw` after a lone "\r" reached
 /// it, found by fuzzing too).
 std::string mesh_statements_of_obj(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "cannot open");
-    const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path, "cannot read");
+    const std::string file = read_input_file(path);
     std::string text;
     for (size_t begin = 0; begin < file.size();) {
         const size_t end = std::min(file.find_first_of("\r\n", begin), file.size());
