@@ -23,7 +23,7 @@ PATH_SUFFIXES = ('.h', '.cpp', '.md', '.json', '.sh', '.py', '.mjs', '.glb', '.g
 LINK = re.compile(r'(?<!!)\[[^\]]*\]\(([^)\s]+)\)|!\[[^\]]*\]\(([^)\s]+)\)')
 CODE_SPAN = re.compile(r'(`+)(.+?)\1')
 FENCE = re.compile(r'^\s*(```|~~~)')
-DOC_IN_COMMENT = re.compile(r'[\w./-]*[\w-]\.md\b(?:, "([^"]+)")?')
+DOC_IN_COMMENT = re.compile(r'(?:[\w./-]*[\w-]\.md\b|\bREADME\b)(?:,? \\?"([^"\\]+)\\?")?')
 CODE_SUFFIXES = ('.h', '.cpp', '.py', '.sh', '.mjs', '.cmake', '.txt', '.in')
 
 
@@ -123,7 +123,7 @@ def check_comments(root, path, problems):
             doc = match.group(0)
             if re.search(r'[<*{]', doc) or doc.startswith(('build/', 'out/')):
                 continue
-            doc = doc.split(',')[0]
+            doc = re.sub(r'^README$', 'README.md', re.split(r',| ', doc)[0])
             candidates = [c for c in (root / doc, root / 'docs' / doc, (root / path).parent / doc) if c.exists()]
             if not candidates:
                 problems.append(f'{path}:{number}: comment names {doc}, which does not exist')

@@ -1,5 +1,5 @@
 // What the written files look like, besides the rendering itself: the EXR pixel type, the view
-// transform of the PNGs, and the optional video of the PNG sequence (README "Outputs").
+// transform of the PNGs, and the optional video of the PNG sequence (docs/usage.md, "Outputs").
 #pragma once
 
 #include <string>

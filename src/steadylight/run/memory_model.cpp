@@ -85,7 +85,7 @@ void check_memory(const MemoryEstimate& need, const MemoryLimit& limit) {
                                                                                   : "the scene's triangles";
     throw InputError("memory",
                      fmt::format("this render needs about {} (image {}, photons {}, scene {}), more than the {} "
-                                 "available ({}); lower {} (README \"Memory\")",
+                                 "available ({}); lower {} (docs/usage.md, \"Memory\")",
                                  gigabytes(need.total()), gigabytes(need.pixels), gigabytes(need.photons),
                                  gigabytes(need.scene), gigabytes(double(limit.bytes)), limit.source, option));
 }
