@@ -25,6 +25,7 @@ started=$(date -u '+%Y-%m-%d %H:%M UTC')
 output=$(mktemp)
 trap 'rm -f "$output"' EXIT
 "${command[@]}" | tee "$output"
+sed -i 's/\x1b\[[0-9;]*m//g' "$output"  # terminal colours (Google Benchmark's) left out of the file
 mkdir -p docs/results
 file=docs/results/$name.md
 {
