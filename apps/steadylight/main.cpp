@@ -160,6 +160,13 @@ void add_render_options(CLI::App* command, RenderSettings& settings, RawOptions&
                       "instead of those the dynamic objects can change (the same images, slower; for comparison)");
 }
 
+/// What a scene may read: --confine-inputs (render, bake, submit, info).
+void add_input_options(CLI::App* command, bool& confine_inputs) {
+    command->add_flag("--confine-inputs", confine_inputs,
+                      "Read only files inside the scene file's folder (symbolic links resolved): for farms that "
+                      "render scene files from others");
+}
+
 /// The console and resume options of `render` and `bake`.
 void add_console_options(CLI::App* command, LogOptions& log) {
     command->add_flag("--quiet,-q", log.quiet, "Print errors only (no progress, no log lines)");
@@ -265,6 +272,7 @@ struct CommandLine {
     SubmitSettings submit_settings;
     std::optional<int> bake_segment;
     std::string info_scene;
+    bool info_confine_inputs = false;
     ReportSettings report_settings;
     CLI::App* render = nullptr;
     CLI::App* submit = nullptr;
@@ -281,6 +289,7 @@ void add_render_command(CommandLine& cli) {
     render->add_flag("--overwrite", cli.settings.overwrite, "Render frames again whose outputs are complete already");
     render->add_flag("--require-cache", cli.settings.require_cache,
                      "A missing or stale static cache file is an error instead of being computed (farm workers)");
+    add_input_options(render, cli.settings.confine_inputs);
     render->add_flag("--check-complete", cli.settings.check_complete,
                      "Render nothing: fail listing the selected frames whose outputs are not complete");
     add_console_options(render, cli.log);
@@ -302,6 +311,7 @@ void add_submit_command(CommandLine& cli) {
         ->check(CLI::Range(1, 1024));
     submit->add_flag("--dry-run", submit_settings.dry_run,
                      "Write the job scripts and print the sbatch lines; submit nothing");
+    add_input_options(submit, cli.settings.confine_inputs);
     add_console_options(submit, cli.log);
 }
 
@@ -310,12 +320,14 @@ void add_bake_command(CommandLine& cli) {
         cli.app.add_subcommand("bake", "Compute the static irradiance cache of a scene and save it");
     add_method_options(bake, cli.settings, cli.raw);
     bake->add_option("--segment", cli.bake_segment, "Bake only segment K (0 = the first; see `steadylight info`)");
+    add_input_options(bake, cli.settings.confine_inputs);
     add_console_options(bake, cli.log);
 }
 
 void add_info_and_report_commands(CommandLine& cli) {
     cli.info = cli.app.add_subcommand("info", "Describe a scene: objects, lights, frames, static/dynamic");
     cli.info->add_option("scene", cli.info_scene, "Scene file (JSON)")->required();
+    add_input_options(cli.info, cli.info_confine_inputs);
     ReportSettings& report_settings = cli.report_settings;
     CLI::App* report = cli.report = cli.app.add_subcommand(
         "report",
@@ -346,7 +358,7 @@ int run_render(const RenderSettings& settings) {
 /// Runs the command the line chose; its exit code.
 int run_command(CommandLine& cli, int argc, char** argv) {
     if (*cli.info) {
-        std::fputs(describe_scene(cli.info_scene).c_str(), stdout);
+        std::fputs(describe_scene(cli.info_scene, cli.info_confine_inputs).c_str(), stdout);
         return 0;
     }
     if (*cli.report) {

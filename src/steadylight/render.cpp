@@ -37,7 +37,7 @@ bool has_light(const SceneDesc& desc) {
 }
 
 Scene load_scene(const RenderSettings& settings) {
-    Scene scene(load_scene_desc(settings.scene_file));
+    Scene scene(load_scene_desc(settings.scene_file, settings.confine_inputs));
     const SceneDesc& desc = scene.desc();
     if (!has_light(desc))
         spdlog::warn(
@@ -354,8 +354,8 @@ std::vector<std::string> bake_static_caches(const RenderSettings& settings, std:
     return files;
 }
 
-std::string describe_scene(const std::string& scene_file) {
-    const Scene scene(load_scene_desc(scene_file));
+std::string describe_scene(const std::string& scene_file, bool confine_inputs) {
+    const Scene scene(load_scene_desc(scene_file, confine_inputs));
     const SceneDesc& desc = scene.desc();
     std::string text = fmt::format("scene {} ({})\n", desc.name, scene_file);
     text += fmt::format("frames: {} at {:.6g} fps ({}) ({:.2f} s), {} segment(s){}\n", desc.frame_count, desc.fps,

@@ -40,6 +40,6 @@ std::vector<std::string> bake_static_caches(const RenderSettings& settings,
 
 /// A human-readable description of a scene: objects, triangles, lights, frames and the
 /// static/dynamic split (`steadylight info`).
-std::string describe_scene(const std::string& scene_file);
+std::string describe_scene(const std::string& scene_file, bool confine_inputs = false);
 
 }  // namespace steadylight

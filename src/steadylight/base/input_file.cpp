@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 #include "steadylight/base/error.h"
 
@@ -23,7 +24,28 @@ const char* kind_of(mode_t mode) {
 
 }  // namespace
 
-std::string read_input_file(const std::string& path) {
+InputFolder InputFolder::of_scene(const std::string& scene_file) {
+    std::error_code error;
+    const std::filesystem::path folder = std::filesystem::absolute(scene_file).parent_path();
+    InputFolder inputs;
+    inputs.m_folder = std::filesystem::weakly_canonical(folder, error).string();
+    if (error || inputs.m_folder.empty()) throw InputError(scene_file, "cannot resolve its folder: " + error.message());
+    return inputs;
+}
+
+void InputFolder::check(const std::string& path) const {
+    if (m_folder.empty()) return;
+    std::error_code error;
+    const std::filesystem::path resolved = std::filesystem::weakly_canonical(path, error);
+    const std::filesystem::path relative = resolved.lexically_relative(m_folder);
+    if (error || relative.empty() || *relative.begin() == "..")
+        throw InputError(path, "lies outside the scene file's folder " + m_folder +
+                                   (resolved.string() != path ? " (it resolves to " + resolved.string() + ")" : "") +
+                                   ", and --confine-inputs allows only files inside it");
+}
+
+std::string read_input_file(const std::string& path, const InputFolder& inputs) {
+    inputs.check(path);
     // O_NONBLOCK: opening a FIFO with no writer would otherwise wait for one.
     const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)

@@ -23,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 
 Scene load_sized_scene(const RenderSettings& settings) {
-    Scene scene(load_scene_desc(settings.scene_file));
+    Scene scene(load_scene_desc(settings.scene_file, settings.confine_inputs));
     const CameraDesc& camera = scene.desc().camera;
     scene.set_resolution(settings.width.value_or(camera.width), settings.height.value_or(camera.height));
     return scene;

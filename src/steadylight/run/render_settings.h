@@ -21,6 +21,7 @@ struct RenderSettings : MethodSettings {
     std::string cache_file;            // static cache file; default <out>/<scene>.irrcache
     bool require_cache = false;        // a missing or stale static cache is an error, not computed
     bool check_complete = false;       // render nothing: an error listing the selected frames not complete
+    bool confine_inputs = false;       // the scene's files only from its own folder (not in the settings file)
     bool show_progress = true;
     bool aov_pngs = false;  // also write each EXR layer as <scene>_<frame:04>.<layer>.png
     bool reuse = true;      // photon paths kept per segment, retraced where dynamic objects

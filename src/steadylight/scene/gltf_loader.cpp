@@ -88,16 +88,17 @@ bool decode_gltf_image(tinygltf::Image* image, const int index, std::string* err
 
 /// tinygltf's file callbacks: external buffers and images are read as every input file is
 /// (base/input_file.h: regular files only), and nothing is ever written.
-tinygltf::FsCallbacks input_file_callbacks() {
+tinygltf::FsCallbacks input_file_callbacks(const InputFolder& inputs) {
     tinygltf::FsCallbacks callbacks{};
     callbacks.FileExists = [](const std::string& path, void*) {
         struct stat status {};
         return ::stat(path.c_str(), &status) == 0;
     };
     callbacks.ExpandFilePath = [](const std::string& path, void*) { return path; };
-    callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                                 void* inputs) {
         try {
-            const std::string bytes = read_input_file(path);
+            const std::string bytes = read_input_file(path, *static_cast<const InputFolder*>(inputs));
             out->assign(bytes.begin(), bytes.end());
             return true;
         } catch (const InputError& e) {
@@ -108,19 +109,20 @@ tinygltf::FsCallbacks input_file_callbacks() {
     callbacks.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
         return false;
     };
+    callbacks.user_data = const_cast<InputFolder*>(&inputs);  // read only
     return callbacks;
 }
 
-tinygltf::Model load_model(const std::string& path) {
+tinygltf::Model load_model(const std::string& path, const InputFolder& inputs) {
     const std::string ext = lowercase_extension(path);
     if (ext != ".gltf" && ext != ".glb")
         throw InputError(path, "unknown glTF file extension \"" + ext + "\" (expected .gltf or .glb)");
-    const std::string bytes = read_input_file(path);
+    const std::string bytes = read_input_file(path, inputs);
     const std::string base_dir = std::filesystem::path(path).parent_path().string();
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     loader.SetImageLoader(decode_gltf_image, &model);
-    loader.SetFsCallbacks(input_file_callbacks());
+    loader.SetFsCallbacks(input_file_callbacks(inputs));
     std::string err, warn;
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const bool ok =
@@ -433,13 +435,14 @@ int frames_covering(float duration_s, float fps) {
     return frames < double(INT_MAX) ? int(frames) : INT_MAX;  // validate() says when it is too many
 }
 
-SceneDesc load_gltf_scene_desc(const std::string& path) {
+SceneDesc load_gltf_scene_desc(const std::string& path, bool confine_inputs) {
     SceneDesc desc;
     desc.source_file = path;
     desc.name = std::filesystem::path(path).stem().string();
     check_scene_name(desc.name, path);
     bool has_camera = false;
-    const float duration_s = append_gltf(path, desc, has_camera);
+    const float duration_s =
+        append_gltf(path, desc, has_camera, confine_inputs ? InputFolder::of_scene(path) : InputFolder{});
     if (!has_camera)
         throw InputError(
             path,
@@ -449,8 +452,8 @@ SceneDesc load_gltf_scene_desc(const std::string& path) {
     return desc;
 }
 
-float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera) {
-    const GltfFile file{.path = path, .model = load_model(path), .image_base = int(desc.images.size())};
+float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera, const InputFolder& inputs) {
+    const GltfFile file{.path = path, .model = load_model(path, inputs), .image_base = int(desc.images.size())};
     append_images(file, desc);
     warn_required_extensions(file);
 

@@ -18,7 +18,7 @@ namespace steadylight {
 /// A file whose animation keys are sampled evenly (as Blender exports by default; see
 /// gltf::sampled_frame_rate) sets `desc.fps` to 1 / their spacing and `desc.fps_source` to
 /// FpsSource::gltf_keys.
-float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera);
+float append_gltf(const std::string& path, SceneDesc& desc, bool& has_camera, const InputFolder& inputs = {});
 
 /// True for a path ending in .gltf or .glb (in any case).
 bool is_gltf_file(const std::string& path);
@@ -29,6 +29,6 @@ int frames_covering(float duration_s, float fps);
 /// A whole scene from one glTF file (`steadylight render scene.glb`): its objects, lights and
 /// camera (which it must have), frames covering its longest animation at its sampled key rate
 /// or 24 fps, named after the file. Throws InputError like load_scene_desc.
-SceneDesc load_gltf_scene_desc(const std::string& path);
+SceneDesc load_gltf_scene_desc(const std::string& path, bool confine_inputs = false);
 
 }  // namespace steadylight

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "steadylight/base/error.h"
+#include "support/input_error.h"
 
 namespace steadylight {
 namespace {
@@ -784,6 +785,20 @@ TEST_F(GltfLoader, ExternalBufferThatIsADeviceOrAFifoIsRefusedNotRead) {
     expect_input_error(with_buffer(fs::relative("/dev/zero", m_dir).string()), "not a regular file: it is a device");
     ASSERT_EQ(::mkfifo((m_dir / "pipe.bin").c_str(), 0600), 0);
     expect_input_error(with_buffer("pipe.bin"), "pipe.bin: not a regular file: it is a FIFO");
+}
+
+// With --confine-inputs a buffer outside the glTF file's folder is refused.
+TEST_F(GltfLoader, ConfinedInputsRefuseABufferOutsideTheFolder) {
+    fs::create_directories(m_dir / "scene");
+    std::ofstream(m_dir / "outside.bin") << "abcd";
+    const std::string path = (m_dir / "scene" / "model.gltf").string();
+    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "../outside.bin", "byteLength": 4}]})";
+    SceneDesc desc;
+    bool has_camera = false;
+    EXPECT_NO_THROW(append_gltf(path, desc, has_camera));
+    const std::string message =
+        testing::input_error_of([&] { append_gltf(path, desc, has_camera, InputFolder::of_scene(path)); });
+    EXPECT_NE(message.find("lies outside the scene file's folder"), std::string::npos) << message;
 }
 
 TEST_F(GltfLoader, UnknownExtensionThrowsInputError) {

@@ -166,7 +166,7 @@ MaterialDesc parse_material(const std::string& name, const JsonObject& json) {
     return m;
 }
 
-Geometry parse_shape(const JsonObject& json) {
+Geometry parse_shape(const JsonObject& json, const InputFolder& inputs) {
     const std::string type = json.string("type");
     Geometry geometry;
     if (type == "quad") {
@@ -184,7 +184,7 @@ Geometry parse_shape(const JsonObject& json) {
         std::error_code error;  // a name too long for the file system is "not found" too
         if (!fs::exists(file, error)) json.fail("file", "mesh file \"" + file + "\" not found");
         try {
-            geometry = load_obj_mesh(file);
+            geometry = load_obj_mesh(file, inputs);
         } catch (const InputError& e) {
             json.fail("file", e.what());  // the mesh's own message, and where the scene names it
         }
@@ -196,10 +196,10 @@ Geometry parse_shape(const JsonObject& json) {
 }
 
 ObjectDesc parse_object(const JsonObject& json, const std::map<std::string, int>& materials, int black_material,
-                        int index) {
+                        const InputFolder& inputs, int index) {
     ObjectDesc object;
     object.name = json.string("name", "object" + std::to_string(index));
-    object.geometry = parse_shape(json.object("shape"));
+    object.geometry = parse_shape(json.object("shape"), inputs);
     object.emission = json.rgb("emission", {});
     for (int c = 0; c < 3; ++c)
         if (object.emission[c] < 0) json.fail("emission", "radiance must not be negative");
@@ -427,8 +427,9 @@ std::string describe_fps_source(const SceneDesc& desc) {
     return "default";
 }
 
-SceneDesc load_scene_desc(const std::string& path) {
-    if (is_gltf_file(path)) return load_gltf_scene_desc(path);
+SceneDesc load_scene_desc(const std::string& path, bool confine_inputs) {
+    if (is_gltf_file(path)) return load_gltf_scene_desc(path, confine_inputs);
+    const InputFolder inputs = confine_inputs ? InputFolder::of_scene(path) : InputFolder{};
     const nlohmann::json root_json = parse_json_file(path);
     const JsonObject root(root_json, path, "");
     SceneDesc desc;
@@ -439,7 +440,7 @@ SceneDesc load_scene_desc(const std::string& path) {
     // A glTF file brings objects, materials, a camera and animations; the JSON adds to them.
     float gltf_duration_s = 0;
     bool has_camera = false;
-    if (root.has("gltf")) gltf_duration_s = append_gltf(resolve_path(root, "gltf"), desc, has_camera);
+    if (root.has("gltf")) gltf_duration_s = append_gltf(resolve_path(root, "gltf"), desc, has_camera, inputs);
 
     if (root.has("frames")) {
         const JsonObject frames = root.object("frames");
@@ -482,7 +483,7 @@ SceneDesc load_scene_desc(const std::string& path) {
         const int black_material = int(desc.materials.size());
         desc.materials.push_back({.name = "(emitter)", .reflectance = {0, 0, 0}});
         for (size_t i = 0; i < objects.size(); ++i)
-            desc.objects.push_back(parse_object(objects[i], material_index, black_material, int(i)));
+            desc.objects.push_back(parse_object(objects[i], material_index, black_material, inputs, int(i)));
     }
     if (root.has("lights"))
         for (const JsonObject& light : root.objects("lights")) desc.point_lights.push_back(parse_point_light(light));

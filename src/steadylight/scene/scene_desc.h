@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "steadylight/base/color.h"
+#include "steadylight/base/input_file.h"
 #include "steadylight/scene/animation.h"
 #include "steadylight/scene/texture.h"
 
@@ -147,9 +148,10 @@ struct SceneDesc {
 };
 
 /// Loads a JSON scene (docs/scene-format.md), or a .gltf/.glb file as a whole scene
-/// (docs/gltf.md); relative paths are relative to the file.
+/// (docs/gltf.md); relative paths are relative to the file. With `confine_inputs`, every file
+/// the scene refers to must lie inside the scene file's folder (base/input_file.h InputFolder).
 /// Throws InputError naming the file and the JSON pointer of anything wrong.
-SceneDesc load_scene_desc(const std::string& path);
+SceneDesc load_scene_desc(const std::string& path, bool confine_inputs = false);
 
 /// Where `desc.fps` came from, for `steadylight info`: "default", "from the scene file" or
 /// "from the glTF keys, one every 1/39 s".

@@ -170,6 +170,30 @@ TEST_F(SceneFiles, LoadsObjMeshRelativeToTheScene) {
     EXPECT_EQ(std::get<TriangleMesh>(desc.objects[0].geometry).indices.size(), 3u);
 }
 
+// Paths may lead anywhere by default; with --confine-inputs only inside the scene file's folder,
+// symbolic links resolved, so a link inside that points outside is refused too.
+TEST_F(SceneFiles, ConfinedInputsMustLieInsideTheSceneFilesFolder) {
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    write("outside.obj", triangle);
+    fs::create_directories(m_dir / "scene");
+    write("scene/inside.obj", triangle);
+    fs::create_symlink(m_dir / "outside.obj", m_dir / "scene" / "link.obj");
+    const auto scene_with_mesh = [&](const std::string& file) {
+        return write("scene/scene.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+            "materials": {"white": {"type": "lambert", "reflectance": 0.5}},
+            "objects": [{"shape": {"type": "mesh", "file": ")" +
+                                             file + R"("}, "material": "white"}]})");
+    };
+    for (const char* file : {"../outside.obj", "link.obj", "inside.obj"})
+        EXPECT_NO_THROW(load_scene_desc(scene_with_mesh(file))) << file;
+    EXPECT_NO_THROW(load_scene_desc(scene_with_mesh("inside.obj"), true));
+    for (const char* file : {"../outside.obj", "link.obj"}) {
+        const std::string message = testing::input_error_of([&] { load_scene_desc(scene_with_mesh(file), true); });
+        EXPECT_NE(message.find("/objects/0/shape/file"), std::string::npos) << message;
+        EXPECT_NE(message.find("lies outside the scene file's folder"), std::string::npos) << message;
+    }
+}
+
 // Lines end where tinyobjloader ends them, at a lone carriage return too: the statements after
 // one are read as a mesh's or left out, never handed over unchecked (a fuzzing finding).
 TEST_F(SceneFiles, ObjLinesEndingInALoneCarriageReturnAreFiltered) {

@@ -78,8 +78,8 @@ namespace {
 /// to int, found by fuzzing), and its messages keep their line numbers. Lines end as
 /// tinyobjloader ends them: at "\n", "\r\n" or a lone "\r" (a `vw` after a lone "\r" reached
 /// it, found by fuzzing too).
-std::string mesh_statements_of_obj(const std::string& path) {
-    const std::string file = read_input_file(path);
+std::string mesh_statements_of_obj(const std::string& path, const InputFolder& inputs) {
+    const std::string file = read_input_file(path, inputs);
     std::string text;
     for (size_t begin = 0; begin < file.size();) {
         const size_t end = std::min(file.find_first_of("\r\n", begin), file.size());
@@ -105,12 +105,12 @@ float obj_coordinate(double value, const std::string& path) {
 
 }  // namespace
 
-TriangleMesh load_obj_mesh(const std::string& path) {
+TriangleMesh load_obj_mesh(const std::string& path, const InputFolder& inputs) {
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(mesh_statements_of_obj(path), "", config))
+    if (!reader.ParseFromString(mesh_statements_of_obj(path, inputs), "", config))
         throw InputError(path, reader.Error().empty() ? "cannot read OBJ file" : reader.Error());
 
     const tinyobj::attrib_t& attrib = reader.GetAttrib();

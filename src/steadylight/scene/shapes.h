@@ -23,7 +23,7 @@ TriangleMesh make_box(Vec3 center, Vec3 size);
 
 /// Reads the triangles (and normals, when every vertex has one) of an OBJ file; polygons are
 /// triangulated. Materials in the file are ignored: the scene assigns one material per object.
-TriangleMesh load_obj_mesh(const std::string& path);
+TriangleMesh load_obj_mesh(const std::string& path, const InputFolder& inputs = {});
 
 /// Total area of a mesh in object space (zero for degenerate meshes).
 float mesh_area(const TriangleMesh& mesh);
