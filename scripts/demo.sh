@@ -12,6 +12,6 @@ command -v ffmpeg >/dev/null && video=(--video "$out/ball.mp4")
 ./build/steadylight render scenes/ball.json --out "$out" "${video[@]}" "$@"
 ./build/steadylight report "$out"
 echo
-echo "demo: the frames are in $out/ (ball_0000.png ... ball_0059.png, and the EXRs with every layer)"
+echo "demo: the frames are in $out/ (ball_<frame>.png, and ball_<frame>.exr with every layer)"
 echo "demo: open the report: $PWD/$out/report.html"
 [ ${#video[@]} -eq 0 ] || echo "demo: the video: $PWD/$out/ball.mp4"
