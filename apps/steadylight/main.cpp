@@ -345,13 +345,12 @@ int run_render(const RenderSettings& settings) {
         print_interrupted(summary, settings.overwrite);
         return 130;
     }
-    const std::string claimed =
-        summary.frames_claimed_elsewhere.empty()
-            ? ""
-            : fmt::format(", {} left to other processes that claimed them ({})",
-                          summary.frames_claimed_elsewhere.size(), format_frame_list(summary.frames_claimed_elsewhere));
+    const std::vector<int>& elsewhere = summary.frames_completed_elsewhere;
+    const std::string others = elsewhere.empty() ? ""
+                                                 : fmt::format(" ({} by other processes that claimed them: {})",
+                                                               elsewhere.size(), format_frame_list(elsewhere));
     spdlog::info("{} frame(s) written, {} complete ones skipped{}, in {} in {:.1f} s", summary.frames_written.size(),
-                 summary.frames_skipped, claimed, settings.out_dir, summary.seconds);
+                 summary.frames_skipped, others, settings.out_dir, summary.seconds);
     return 0;
 }
 

@@ -1,8 +1,11 @@
 #include "steadylight/render.h"
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <functional>
+#include <thread>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -192,28 +195,30 @@ RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, R
 /// Writes a rendered frame on `writer`'s thread while the next one renders, holding the frame's
 /// claim until its manifest is written; logs the frame's line when done.
 void write_in_background(FrameWriter& writer, const RenderSettings& settings, const Scene& scene, int frame,
-                         RenderedFrame rendered, std::unique_ptr<FrameClaim> claim, const std::string& key,
+                         RenderedFrame rendered, std::unique_ptr<LockFile> claim, const std::string& key,
                          double render_s) {
-    writer.write(frame,
-                 [&settings, &scene, frame, &key, render_s, rendered = std::move(rendered), claim = std::move(claim)] {
-                     const Stopwatch time;
-                     write_frame_outputs(settings, scene, frame, rendered, key);
-                     spdlog::info("frame {:4d}  {:7.2f} s  {}  (written in {:.2f} s, beside the next frame){}", frame,
-                                  render_s, frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
-                                  time.elapsed_s(), rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
-                 });
+    writer.write(frame, [&settings, &scene, frame, &key, render_s, rendered = std::move(rendered),
+                         claim = std::move(claim)]() mutable {
+        const Stopwatch time;
+        write_frame_outputs(settings, scene, frame, rendered, key);
+        const double write_s = time.elapsed_s();
+        // Complete now: released here, not when the next frame's write replaces this one (a
+        // process killed inside the next frame would leave this claim for ever, and processes
+        // waiting for the frame would wait on it).
+        claim.reset();
+        spdlog::info("frame {:4d}  {:7.2f} s  {}  (written in {:.2f} s, beside the next frame){}", frame, render_s,
+                     frame_file_name(settings.out_dir, scene.name(), frame, "exr"), write_s,
+                     rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
+    });
 }
 
 /// This process's claim on `frame` (run/frame_claim.h), or nothing when another process holds
-/// it or has completed the frame meanwhile; either is noted in `summary`.
-std::unique_ptr<FrameClaim> claim_frame(const RenderSettings& settings, const Scene& scene, int frame,
-                                        const std::string& key, RenderSummary& summary) {
-    ClaimAttempt attempt = try_claim_frame(settings.out_dir, scene.name(), frame);
-    if (!attempt.claim) {
-        spdlog::info("frame {}: claimed by another process ({}), left to it", frame, attempt.holder);
-        summary.frames_claimed_elsewhere.push_back(frame);
-        return nullptr;
-    }
+/// it (then `holder` says who) or has completed the frame meanwhile (noted in `summary`).
+std::unique_ptr<LockFile> claim_frame(const RenderSettings& settings, const Scene& scene, int frame,
+                                      const std::string& key, RenderSummary& summary, std::string& holder) {
+    LockAttempt attempt = try_claim_frame(settings.out_dir, scene.name(), frame);
+    holder = attempt.holder;
+    if (!attempt.lock) return nullptr;
     if (!attempt.taken_over.empty()) spdlog::warn("frame {}: took over a dead claim ({})", frame, attempt.taken_over);
     if (!settings.overwrite && check_frame_outputs(settings.out_dir, scene.name(), frame, key).complete) {
         spdlog::info("frame {}: completed by another process meanwhile, skipped", frame);
@@ -221,13 +226,42 @@ std::unique_ptr<FrameClaim> claim_frame(const RenderSettings& settings, const Sc
         summary.frames_completed_elsewhere.push_back(frame);
         return nullptr;
     }
-    return std::move(attempt.claim);
+    return std::move(attempt.lock);
+}
+
+/// Waits for the frames that other processes claimed (in `summary`), polling as often as a
+/// holder refreshes its claim: a frame its holder completed is done; one whose claim is dead (or
+/// released without the frame complete) is claimed here and given to `render_claimed`. Stops at
+/// the first checkpoint after Ctrl-C.
+void wait_for_claimed_frames(const RenderSettings& settings, const Scene& scene, const std::string& key,
+                             RenderSummary& summary,
+                             const std::function<void(int, std::unique_ptr<LockFile>)>& render_claimed) {
+    std::vector<int>& waiting = summary.frames_claimed_elsewhere;
+    if (waiting.empty()) return;
+    spdlog::info("waiting for frame(s) {}, claimed by other processes: each is taken over if its holder dies",
+                 format_frame_list(waiting));
+    const double poll_s = lock_times().refresh_s;
+    while (!waiting.empty()) {
+        for (const Stopwatch pause; pause.elapsed_s() < poll_s;) {
+            throw_if_interrupted();
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        }
+        for (const int frame : std::vector<int>(waiting)) {
+            std::string holder;
+            std::unique_ptr<LockFile> claim = claim_frame(settings, scene, frame, key, summary, holder);
+            if (!holder.empty()) continue;
+            std::erase(waiting, frame);
+            if (claim) render_claimed(frame, std::move(claim));
+        }
+    }
 }
 
 /// Renders and writes `frames` (sorted) in order: for each segment its static pass (when the
-/// method has one), then its frames, each under this process's claim. Adds each frame to
-/// `summary` when written; each frame is written while the next renders (run/frame_writer.h).
-/// Throws RenderInterrupted at the first checkpoint after Ctrl-C, after the frame before it is written.
+/// method has one), then its frames, each under this process's claim. Frames that other
+/// processes hold are waited for at the end: each is completed by its holder, or taken over and
+/// rendered here when its holder dies. Adds each frame to `summary` when written; each frame is
+/// written while the next renders (run/frame_writer.h). Throws RenderInterrupted at the first
+/// checkpoint after Ctrl-C, after the frame before it is written.
 void render_frames(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
                    const std::string& key, RenderSummary& summary) {
     if (frames.empty()) return;
@@ -238,30 +272,39 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
     const ScopedCheckpointListener listening(&progress);
     const std::optional<int> interrupt_after = test_interrupt_after_frames();
     FrameWriter writer([&summary](int frame) { summary.frames_written.push_back(frame); });
+    const bool needs_solution = method_info(settings.method).has_static_pass || reuses_photon_paths(settings);
+    // The static pass of the segment whose frames render now: run (or loaded) with its first
+    // frame rendered here, freed when the next segment's is made.
+    std::optional<StaticSolution> solution;
+    const Segment* solved = nullptr;
     int rendered_here = 0;
-    try {
-        for (const Segment& segment : scene.segments()) {
-            const std::vector<int> segment_frames = frames_in(frames, segment);
-            if (segment_frames.empty()) continue;
-            std::optional<StaticSolution> solution;
-            for (const int frame : segment_frames) {
-                progress.begin_frame(frame);
-                std::unique_ptr<FrameClaim> claim = claim_frame(settings, scene, frame, key, summary);
-                if (claim) {
-                    // The segment's static pass runs (or is loaded) with its first frame rendered here.
-                    if (!solution && (method_info(settings.method).has_static_pass || reuses_photon_paths(settings)))
-                        solution = segment_solution(settings, scene, tracer, segment);
-                    if (interrupt_after == rendered_here) std::raise(SIGINT);
-                    const Stopwatch time;
-                    RenderedFrame rendered =
-                        render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);
-                    write_in_background(writer, settings, scene, frame, std::move(rendered), std::move(claim), key,
-                                        time.elapsed_s());
-                    ++rendered_here;
-                }
-                progress.finish_frame();
-            }
+    const auto render_claimed = [&](int frame, std::unique_ptr<LockFile> claim) {
+        const Segment& segment = scene.segment_of(frame);
+        if (needs_solution && solved != &segment) {
+            solution.reset();
+            solution = segment_solution(settings, scene, tracer, segment);
+            solved = &segment;
         }
+        if (interrupt_after == rendered_here) std::raise(SIGINT);
+        const Stopwatch time;
+        RenderedFrame rendered = render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);
+        write_in_background(writer, settings, scene, frame, std::move(rendered), std::move(claim), key,
+                            time.elapsed_s());
+        ++rendered_here;
+    };
+    try {
+        for (const int frame : frames) {
+            progress.begin_frame(frame);
+            std::string holder;
+            if (std::unique_ptr<LockFile> claim = claim_frame(settings, scene, frame, key, summary, holder)) {
+                render_claimed(frame, std::move(claim));
+            } else if (!holder.empty()) {
+                spdlog::info("frame {}: claimed by another process ({}), left to it for now", frame, holder);
+                summary.frames_claimed_elsewhere.push_back(frame);
+            }
+            progress.finish_frame();
+        }
+        wait_for_claimed_frames(settings, scene, key, summary, render_claimed);
         writer.finish();
     } catch (...) {
         writer.finish_quietly();  // a frame rendered before Ctrl-C is still written whole
@@ -318,17 +361,9 @@ RenderSummary render_animation(const RenderSettings& settings) {
         summary.interrupted = true;
     }
     summary.frames_left = frames_left(todo, summary);
-    // The video needs every selected frame: after an interrupt, the resumed run makes it; with
-    // frames left to other processes, `--check-complete --video` once they are done.
-    if (!settings.output.video_file.empty() && !summary.interrupted) {
-        if (summary.frames_claimed_elsewhere.empty())
-            write_video(settings, scene, frames);
-        else
-            spdlog::warn(
-                "video: not written, other processes are still rendering frames {}; once they are done, "
-                "render with --check-complete --video",
-                format_frame_list(summary.frames_claimed_elsewhere));
-    }
+    // The video needs every selected frame: after an interrupt, the resumed run makes it. (Frames
+    // other processes claimed were waited for.)
+    if (!settings.output.video_file.empty() && !summary.interrupted) write_video(settings, scene, frames);
     summary.seconds = time.elapsed_s();
     return summary;
 }

@@ -14,7 +14,7 @@ namespace steadylight {
 struct RenderSummary {
     std::vector<int> frames_written;              // by this run
     int frames_skipped = 0;                       // complete from an earlier run (run/frame_manifest.h)
-    std::vector<int> frames_claimed_elsewhere;    // being rendered by another process (run/frame_claim.h)
+    std::vector<int> frames_claimed_elsewhere;    // still claimed by another process when interrupted
     std::vector<int> frames_completed_elsewhere;  // finished by another process while this one ran
     std::vector<int> frames_left;                 // selected but not written: after an interrupt
     bool interrupted = false;                     // stopped by Ctrl-C (base/checkpoint.h)
@@ -25,7 +25,8 @@ struct RenderSummary {
 /// `.png` for each, its statistics `<scene>_<frame:04>.stats.json`, then the frame's
 /// manifest; and `<out>/<scene>.settings.json` before the first frame. Frames whose outputs are
 /// complete are skipped unless `settings.overwrite`; each frame is claimed first, and one that
-/// another process holds is left to it (run/frame_claim.h). With `settings.check_complete`
+/// another process holds is waited for at the end: completed by its holder, or taken over when
+/// its holder dies (run/frame_claim.h). With `settings.check_complete`
 /// nothing is rendered: an InputError lists the selected frames that are not complete. An
 /// interrupt stops it at the next checkpoint: the frame in progress is dropped and the summary
 /// says so.

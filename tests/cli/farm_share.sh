@@ -7,8 +7,9 @@
 # 3. Two plain renders started at once on one folder share its frames: every frame written
 #    once, the static cache computed once, images as in 1, no claim or .partial file left.
 # 4. A claim of this host whose process is gone is taken over at once and the frame's stale
-#    .partial removed; a fresh claim of another host is left to it, and --check-complete then
-#    fails naming that frame.
+#    .partial removed; a fresh claim of another host is left to it for now, waited for at the
+#    end, and taken over once it is no longer refreshed (lock times shortened for the test);
+#    --check-complete fails naming a frame that is not complete.
 set -euo pipefail
 binary=$1 source=$2 out=$3
 scene=$source/scenes/ball.json
@@ -24,7 +25,7 @@ same_images() {  # same_images DIR_A DIR_B FRAMES...: those frames' EXR and PNG 
     done
   done
 }
-no_leftovers() { ! ls -A "$1" | grep -Eq '\.(partial|claim)$' || fail "left in $1: $(ls -A "$1")"; }
+no_leftovers() { ! ls -A "$1" | grep -Eq '\.(partial|claim|lock|break|tmp)$' || fail "left in $1: $(ls -A "$1")"; }
 
 rm -rf "$out"
 mkdir -p "$out"
@@ -79,22 +80,24 @@ sleep 0 & gone=$!; wait $gone
 printf '{"host": "%s", "pid": %d, "time": "then"}\n' "$(hostname)" "$gone" > "$out/claims/ball_0002.claim"
 echo "half a frame" > "$out/claims/ball_0002.exr.partial"
 printf '{"host": "elsewhere", "pid": 1, "time": "now"}\n' > "$out/claims/ball_0003.claim"
-"$binary" render "$scene" "${small[@]}" --frames 0-3 --out "$out/claims" > "$out/claims.log" 2>&1 \
-  || { cat "$out/claims.log"; fail "render with claims"; }
+STEADYLIGHT_TEST_LOCK_TIMES=0.2,3 "$binary" render "$scene" "${small[@]}" --frames 0-3 --out "$out/claims" \
+  > "$out/claims.log" 2>&1 || { cat "$out/claims.log"; fail "render with claims"; }
 cat "$out/claims.log"
 grep -q "frame 2: took over a dead claim (host $(hostname), pid $gone, .*: its process $gone on this host is gone)" \
   "$out/claims.log" || fail "the dead claim was not taken over"
 grep -q "frame 2: removed the stale ball_0002.exr.partial" "$out/claims.log" || fail "stale .partial not removed"
-grep -q "frame 3: claimed by another process (host elsewhere, pid 1, refreshed [0-9]* s ago), left to it" "$out/claims.log" \
-  || fail "the live claim was not respected"
-grep -q "3 frame(s) written, 0 complete ones skipped, 1 left to other processes that claimed them (3)" "$out/claims.log" \
-  || fail "summary with a claimed frame"
-[ -e "$out/claims/ball_0003.claim" ] && [ ! -e "$out/claims/ball_0002.claim" ] || fail "claims after the render: $(ls "$out/claims")"
-same_images "$out/one" "$out/claims" 0 1 2
+grep -q "frame 3: claimed by another process (host elsewhere, pid 1, refreshed [0-9]* s ago), left to it for now" \
+  "$out/claims.log" || fail "the live claim was not respected"
+grep -q "waiting for frame(s) 3, claimed by other processes" "$out/claims.log" || fail "no wait for the claimed frame"
+grep -q "frame 3: took over a dead claim (host elsewhere, pid 1, .*: not refreshed for [0-9]* s, the limit is 3 s)" \
+  "$out/claims.log" || fail "the claim that went stale was not taken over"
+grep -q "4 frame(s) written, 0 complete ones skipped" "$out/claims.log" || fail "summary after taking a claim over"
+no_leftovers "$out/claims"
+same_images "$out/one" "$out/claims" 0 1 2 3
 status=0
-"$binary" render "$scene" "${small[@]}" --frames 0-3 --check-complete --out "$out/claims" > "$out/check.log" 2>&1 || status=$?
+"$binary" render "$scene" "${small[@]}" --frames 0-4 --check-complete --out "$out/claims" > "$out/check.log" 2>&1 || status=$?
 cat "$out/check.log"
-[ $status -eq 1 ] && grep -q "claims: 1 of the 4 selected frame(s) are not complete: 3" "$out/check.log" \
+[ $status -eq 1 ] && grep -q "claims: 1 of the 5 selected frame(s) are not complete: 4" "$out/check.log" \
   || fail "--check-complete: status $status"
-! ls "$out/claims" | grep -q 'ball_0003\.exr' || fail "--check-complete rendered a frame"
+! ls "$out/claims" | grep -q 'ball_0004\.exr' || fail "--check-complete rendered a frame"
 echo "ok"

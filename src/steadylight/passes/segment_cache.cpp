@@ -8,7 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "steadylight/base/error.h"
-#include "steadylight/base/file_lock.h"
+#include "steadylight/base/lock_file.h"
 #include "steadylight/base/stopwatch.h"
 #include "steadylight/irradiance/cache_file.h"
 
@@ -64,7 +64,7 @@ StaticSolution load_or_run_segment_pass(const Scene& scene, RayTracer& tracer, c
                                            "bake SCENE --segment {}), or render without --require-cache",
                                            segment.first, segment.last, load.rejection, segment_index(scene, segment)));
     // Another process may be computing it: wait for its lock, then look again.
-    const FileLock lock(cache_lock_file(file));
+    const std::unique_ptr<LockFile> lock = LockFile::lock(cache_lock_file(file), "the static cache " + file);
     load = read_cache_file(file, inputs);
     if (load.cache) return loaded_solution(load, time, file, paths);
     StaticSolution solution{run_segment_pass(scene, tracer, segment, settings, paths.get()), 0, false, load.rejection,

@@ -13,8 +13,8 @@
 
 #include "steadylight/base/atomic_file.h"
 #include "steadylight/base/error.h"
-#include "steadylight/base/file_lock.h"
 #include "steadylight/base/hash.h"
+#include "steadylight/base/lock_file.h"
 #include "steadylight/run/frame_selection.h"
 #include "steadylight/scene/scene_desc.h"
 
@@ -108,7 +108,8 @@ std::string settings_file_name(const std::string& out_dir, const std::string& sc
 
 void write_settings_file(const std::string& path, nlohmann::json settings_json, bool overwrite) {
     // Many processes may start at once on one folder: check and write under its lock.
-    const FileLock lock(folder_lock_name(std::filesystem::path(path).parent_path().string()));
+    const std::unique_ptr<LockFile> lock =
+        LockFile::lock(folder_lock_name(std::filesystem::path(path).parent_path().string()), "the settings file");
     if (std::ifstream in(path); in) {
         nlohmann::json before;
         try {

@@ -42,9 +42,8 @@ nlohmann::json make_settings_json(const RenderSettings& settings, const RunInfo&
 /// A checksum of the "render" part of `settings_json`: 16 hex digits.
 std::string settings_key(const nlohmann::json& settings_json);
 
-/// `<out>/.steadylight.lock`: the output folder's lock (base/file_lock.h), held while the settings
-/// file is checked and written and while frames are claimed (run/frame_claim.h), so that many
-/// processes can share the folder.
+/// `<out>/.steadylight.lock`: the output folder's lock file (base/lock_file.h), held while the
+/// settings file is checked and written, so that many processes can share the folder.
 std::string folder_lock_name(const std::string& out_dir);
 
 /// `<out>/<scene>.settings.json`.

@@ -2,15 +2,13 @@
 #include "steadylight/run/settings_file.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
-
-#include <fmt/format.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "steadylight/base/error.h"
 #include "support/input_error.h"
+#include "support/lock_files.h"
 
 namespace steadylight {
 namespace {
@@ -20,12 +18,7 @@ namespace fs = std::filesystem;
 class SettingsFile : public ::testing::Test {
 protected:
     void SetUp() override {
-        // One folder per test and process: ctest runs tests in parallel, maybe from several checkouts.
-        m_dir = fs::temp_directory_path() / fmt::format("steadylight_settings_{}_{}",
-                                                        ::testing::UnitTest::GetInstance()->current_test_info()->name(),
-                                                        getpid());
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
+        m_dir = testing::fresh_test_folder();
         m_settings.scene_file = (m_dir / "scene.json").string();
         std::ofstream(m_settings.scene_file) << "{}";
         m_path = settings_file_name(m_dir.string(), "scene");
