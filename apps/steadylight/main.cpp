@@ -345,7 +345,8 @@ int run_render(const RenderSettings& settings) {
         print_interrupted(summary, settings.overwrite);
         return 130;
     }
-    const std::vector<int>& elsewhere = summary.frames_completed_elsewhere;
+    std::vector<int> elsewhere = summary.frames_completed_elsewhere;
+    std::sort(elsewhere.begin(), elsewhere.end());
     const std::string others = elsewhere.empty() ? ""
                                                  : fmt::format(" ({} by other processes that claimed them: {})",
                                                                elsewhere.size(), format_frame_list(elsewhere));

@@ -229,10 +229,10 @@ std::unique_ptr<LockFile> claim_frame(const RenderSettings& settings, const Scen
     return std::move(attempt.lock);
 }
 
-/// Waits for the frames that other processes claimed (in `summary`), polling as often as a
-/// holder refreshes its claim: a frame its holder completed is done; one whose claim is dead (or
-/// released without the frame complete) is claimed here and given to `render_claimed`. Stops at
-/// the first checkpoint after Ctrl-C.
+/// Waits for the frames that other processes claimed (in `summary`), looking once a second: a
+/// frame its holder completed is done; one whose claim is dead (or released without the frame
+/// complete) is claimed here and given to `render_claimed`. Stops at the first checkpoint after
+/// Ctrl-C.
 void wait_for_claimed_frames(const RenderSettings& settings, const Scene& scene, const std::string& key,
                              RenderSummary& summary,
                              const std::function<void(int, std::unique_ptr<LockFile>)>& render_claimed) {
@@ -240,7 +240,7 @@ void wait_for_claimed_frames(const RenderSettings& settings, const Scene& scene,
     if (waiting.empty()) return;
     spdlog::info("waiting for frame(s) {}, claimed by other processes: each is taken over if its holder dies",
                  format_frame_list(waiting));
-    const double poll_s = lock_times().refresh_s;
+    const double poll_s = std::min(1.0, lock_times().refresh_s);
     while (!waiting.empty()) {
         for (const Stopwatch pause; pause.elapsed_s() < poll_s;) {
             throw_if_interrupted();
