@@ -194,14 +194,18 @@ RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, R
 void write_in_background(FrameWriter& writer, const RenderSettings& settings, const Scene& scene, int frame,
                          RenderedFrame rendered, std::unique_ptr<FrameClaim> claim, const std::string& key,
                          double render_s) {
-    writer.write(frame,
-                 [&settings, &scene, frame, &key, render_s, rendered = std::move(rendered), claim = std::move(claim)] {
-                     const Stopwatch time;
-                     write_frame_outputs(settings, scene, frame, rendered, key);
-                     spdlog::info("frame {:4d}  {:7.2f} s  {}  (written in {:.2f} s, beside the next frame){}", frame,
-                                  render_s, frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
-                                  time.elapsed_s(), rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
-                 });
+    writer.write(frame, [&settings, &scene, frame, &key, render_s, rendered = std::move(rendered),
+                         claim = std::move(claim)]() mutable {
+        const Stopwatch time;
+        write_frame_outputs(settings, scene, frame, rendered, key);
+        const double write_s = time.elapsed_s();
+        // Complete now: released here, not when the next frame's write replaces this one (a
+        // process killed inside the next frame would leave this claim for ever).
+        claim.reset();
+        spdlog::info("frame {:4d}  {:7.2f} s  {}  (written in {:.2f} s, beside the next frame){}", frame, render_s,
+                     frame_file_name(settings.out_dir, scene.name(), frame, "exr"), write_s,
+                     rendered.stats ? "  |  " + summarize(*rendered.stats) : "");
+    });
 }
 
 /// This process's claim on `frame` (run/frame_claim.h), or nothing when another process holds
