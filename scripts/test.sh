@@ -18,7 +18,7 @@ bash scripts/setup.sh clang-format chromium sshfs openssh-server
 
 # Tests over 10 s each under the address and undefined sanitizers (60% of that suite's time):
 # the kill-and-resume and farm runs, the truth suite's renders, the longest animation tests.
-slow_under_sanitizers='^(cli\.(kill_resume|blender_room|disk_faults|farm_share|resume)|farm\.(slurm|sshfs)|Scenes/TruthSuite\.'
+slow_under_sanitizers='^(cli\.(kill_resume|blender_room|disk_faults|farm_share|resume)|farm\.(slurm|slurm_faults|sshfs)|Scenes/TruthSuite\.'
 slow_under_sanitizers+='|Localized\.(CacheFileOfTheLightOff|FrozenCacheRecomputes|SwitchedOnLight|StaticCacheIsSaved)'
 slow_under_sanitizers+='|DynamicPhotons\.StaticPathsRetracedWhere|ComposedMaps\.MovingAbsorbingGlass'
 slow_under_sanitizers+='|PixelReuse\.PixelsWithNoTermChanged)'
