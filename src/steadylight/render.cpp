@@ -31,12 +31,18 @@
 namespace steadylight {
 namespace {
 
-/// True when something in the scene emits light: an emitting object or a point or spot light.
+/// True when something in the scene emits light: an emitting object, a point or spot light, a
+/// sun or the world.
 bool has_light(const SceneDesc& desc) {
     return std::any_of(desc.objects.begin(), desc.objects.end(), [](const ObjectDesc& o) { return o.is_emitter(); }) ||
-           std::any_of(desc.point_lights.begin(), desc.point_lights.end(), [](const PointLightDesc& light) {
-               return light.intensity_track ? is_ever_lit(*light.intensity_track) : !is_black(light.intensity);
-           });
+           std::any_of(desc.point_lights.begin(), desc.point_lights.end(),
+                       [](const PointLightDesc& light) {
+                           return light.intensity_track ? is_ever_lit(*light.intensity_track)
+                                                        : !is_black(light.intensity);
+                       }) ||
+           std::any_of(desc.suns.begin(), desc.suns.end(),
+                       [](const SunLightDesc& sun) { return !is_black(sun.irradiance); }) ||
+           (desc.world && !is_black(desc.world->radiance()));
 }
 
 Scene load_scene(const RenderSettings& settings) {
@@ -418,13 +424,24 @@ std::string describe_scene(const std::string& scene_file, bool confine_inputs) {
     text += fmt::format("objects: {} ({} static, {} dynamic), {} triangles\n", desc.objects.size(),
                         scene.static_objects().size(), scene.dynamic_objects().size(), triangle_count(desc));
     text += objects;
-    text += fmt::format("lights: {} area, {} point/spot", area_lights, desc.point_lights.size());
+    text +=
+        fmt::format("lights: {} area, {} point/spot, {} sun", area_lights, desc.point_lights.size(), desc.suns.size());
     text += animated_lights
                 ? fmt::format(", {} animated (switched or dimmed; a new segment where they change)\n", animated_lights)
                 : std::string("\n");
     for (const PointLightDesc& light : desc.point_lights)
         text += fmt::format("  {:<20} {}{}\n", light.name, light.type == PointLightType::point ? "point" : "spot",
                             light.is_intensity_animated() ? ", animated intensity" : "");
+    for (const SunLightDesc& sun : desc.suns)
+        text += fmt::format("  {:<20} sun, travelling ({:.3f}, {:.3f}, {:.3f}), {:.3g} W/m² (luminance), {:.2f}°\n",
+                            sun.name, sun.direction.x, sun.direction.y, sun.direction.z, luminance(sun.irradiance),
+                            sun.angle_deg);
+    if (desc.world) {
+        const Rgb L = desc.world->radiance();
+        text += fmt::format("world: uniform radiance ({:.3g}, {:.3g}, {:.3g})\n", L.r, L.g, L.b);
+    } else {
+        text += "world: none (the background is black)\n";
+    }
     text += fmt::format("materials: {}\n", desc.materials.size());
     return text;
 }

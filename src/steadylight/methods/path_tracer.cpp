@@ -49,13 +49,13 @@ private:
 Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const OrthonormalBasis& basis,
                     const Bsdf& bsdf, Vec3 wo, Pcg32& rng, PathCounts& counts) {
     const float u_select = rng.next_float();
-    const std::optional<LightSample> light = context.lights.sample(sp.p, u_select, rng.next_vec2());
+    const std::optional<LightSample> light = context.lights.sample(sp.p, u_select, rng.next_vec2(), sp.nm);
     if (!light) return {};
     const Vec3 wi = basis.to_local(light->wi);
     const Rgb f = bsdf.eval(wo, wi);
     if (is_black(f)) return {};
     ++counts.rays;
-    if (context.tracer.occluded(spawn_ray_to(sp.p, sp.ng, light->p))) return {};
+    if (context.tracer.occluded(shadow_ray(*light, sp.p, sp.ng))) return {};
     const float weight = light->is_delta ? 1.0f : power_heuristic(light->pdf, bsdf.pdf(wo, wi));
     return f * light->Li * (std::abs(wi.z) * weight / light->pdf);
 }
@@ -83,11 +83,16 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
     Rgb L, beta{1, 1, 1};
     bool specular_bounce = true;  // the camera ray counts emitters fully, like a delta bounce
     float bsdf_pdf = 0;
-    Vec3 previous_p;
+    Vec3 previous_p, previous_n;  // the last surface point's, for MIS weights
     for (int depth = 0; depth <= settings.max_depth; ++depth) {
         ++counts.rays;
         const std::optional<Hit> hit = context.tracer.intersect(ray);
-        if (!hit) break;  // the background is black
+        if (!hit) {
+            // The lights from far away, weighted against sampling them at the previous vertex.
+            L += beta * (specular_bounce ? context.lights.escaped_radiance(ray.d)
+                                         : context.lights.escaped_radiance(ray.d, previous_n, bsdf_pdf));
+            break;
+        }
         ++counts.vertices;
         const SurfacePoint sp = make_surface_point(context.scene, context.frame, ray, *hit);
         beta *= volume_transmittance(context, sp, ray.d, hit->t);  // the segment crossed absorbing glass
@@ -120,6 +125,7 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         specular_bounce = bs->is_delta;
         bsdf_pdf = bs->pdf;
         previous_p = sp.p;
+        previous_n = sp.nm;
         ray = spawn_ray(sp.p, sp.ng, basis.to_world(bs->wi));
 
         // Russian roulette: end low-throughput paths, reweighting the survivors.

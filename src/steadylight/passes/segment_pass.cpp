@@ -72,6 +72,10 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         h.add(int(light.type)), h.add(light.position), h.add(light.direction), h.add(state.point_light_intensity[i]);
         h.add(light.cone_angle_deg), h.add(light.falloff_start_deg);
     }
+    for (const SunLightDesc& sun : scene.desc().suns) h.add(sun.direction), h.add(sun.irradiance), h.add(sun.angle_deg);
+    if (const std::optional<WorldDesc>& world = scene.desc().world) h.add(world->radiance());
+    // Light from far away aims its photons at the animation's bounds.
+    if (!scene.desc().suns.empty() || scene.desc().world) h.add(scene.bounds().center), h.add(scene.bounds().radius);
     for (int frame = segment.first; frame <= segment.last; ++frame) {
         const Camera camera = scene.evaluate(frame).camera;
         h.add(camera.world_from_camera), h.add(camera.tan_half_fov_y), h.add(camera.width), h.add(camera.height);

@@ -109,7 +109,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, 
         if (!light) continue;
         const Vec3 wi = basis.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
-        if (is_black(f) || m_context.tracer.occluded(spawn_ray_to(sp.p, sp.ng, light->p), m_visibility)) continue;
+        if (is_black(f) || m_context.tracer.occluded(shadow_ray(*light, sp.p, sp.ng), m_visibility)) continue;
         sum += f * light->Li * (std::abs(wi.z) / light->pdf);
     }
     return sum / float(m_settings.direct_samples);
@@ -143,8 +143,7 @@ Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& bas
             const SurfacePoint on_mirror = make_surface_point(m_context.scene, m_context.frame, to_mirror, *hit);
             const std::optional<Bounce> reflected =
                 sample_bounce(*bsdf_at(m_context, on_mirror), on_mirror, towards_image, {}, 0, TransportMode::radiance);
-            if (!reflected ||
-                m_context.tracer.occluded(spawn_ray_to(on_mirror.p, on_mirror.ng, light->p), m_visibility))
+            if (!reflected || m_context.tracer.occluded(shadow_ray(*light, on_mirror.p, on_mirror.ng), m_visibility))
                 continue;
             sum += f * reflected->sample.weight * light->Li * (std::abs(wi.z) / light->pdf);
         }
@@ -200,7 +199,12 @@ Components Shader::shade(const Ray& ray, int depth, Emission emission, const Pix
     if (pixel.recorder && depth > 0)
         pixel.recorder->add_flags(pixel.pixel_index,
                                   hit ? PixelRecorder::chain : PixelRecorder::chain | PixelRecorder::open_chain);
-    if (!hit) return {};
+    if (!hit) {
+        // The lights from far away, seen as an emitter is (light sampling took them otherwise).
+        Components c;
+        if (emission == Emission::counted && !pixel.skip_direct) c.direct = m_context.lights.escaped_radiance(ray.d);
+        return c;
+    }
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
     if (pixel.recorder) pixel.recorder->add_point(pixel.pixel_index, surface.p);
     Components c = shade_hit(ray, *hit, surface, depth, emission, pixel, strata, rng);

@@ -32,7 +32,9 @@ std::optional<EmissionSample> PhotonTracer::emit(float u_select, Vec2 u_position
     const LightSet& lights = m_context.lights;
     if (m_targets) {
         const std::optional<EmissionPoint> at = lights.sample_emission_point(u_select, u_position);
-        const std::optional<AimedDirection> aim = at ? m_targets->sample(at->p, u_direction) : std::nullopt;
+        // Lights from far away are never aimed (their points have no pdf).
+        const std::optional<AimedDirection> aim =
+            at && at->pdf > 0 ? m_targets->sample(at->p, u_direction) : std::nullopt;
         if (aim) {
             const Vec3 n = dot(at->n, aim->d) < 0 ? -at->n : at->n;  // the side it leaves
             return EmissionSample{at->p, n, aim->d, lights.emitted_intensity(*at, aim->d) / (at->pdf * aim->pdf)};

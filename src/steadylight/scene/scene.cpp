@@ -1,7 +1,9 @@
 #include "steadylight/scene/scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <variant>
 
 namespace steadylight {
 
@@ -57,6 +59,39 @@ std::vector<Segment> split_into_segments(const SceneDesc& desc) {
     return segments;
 }
 
+/// The corners of an object's box in its own space.
+std::array<Vec3, 8> object_box_corners(const Geometry& geometry) {
+    Vec3 lo{infinity, infinity, infinity}, hi = -lo;
+    if (const auto* mesh = std::get_if<TriangleMesh>(&geometry)) {
+        for (const Vec3 p : mesh->positions) lo = min(lo, p), hi = max(hi, p);
+    } else {
+        const Sphere& sphere = std::get<Sphere>(geometry);
+        const Vec3 r{sphere.radius, sphere.radius, sphere.radius};
+        lo = sphere.center - r, hi = sphere.center + r;
+    }
+    std::array<Vec3, 8> corners;
+    for (int i = 0; i < 8; ++i) corners[size_t(i)] = {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
+    return corners;
+}
+
+/// Scene::bounds(): a sphere about the box of every object's box at every frame (a static
+/// object's once).
+BoundingSphere animation_bounds(const SceneDesc& desc) {
+    Vec3 lo{infinity, infinity, infinity}, hi = -lo;
+    for (const ObjectDesc& object : desc.objects) {
+        const std::array<Vec3, 8> corners = object_box_corners(object.geometry);
+        const int frames = is_chain_animated(object.placement) ? desc.frame_count : 1;
+        for (int frame = 0; frame < frames; ++frame) {
+            const Transform world_from_object = evaluate_chain(object.placement, desc.frame_time_s(frame));
+            for (const Vec3 corner : corners) {
+                const Vec3 p = world_from_object.point(corner);
+                lo = min(lo, p), hi = max(hi, p);
+            }
+        }
+    }
+    return BoundingSphere::of_box(lo, hi);
+}
+
 }  // namespace
 
 Scene::Scene(SceneDesc desc) : m_desc(std::move(desc)) {
@@ -64,6 +99,7 @@ Scene::Scene(SceneDesc desc) : m_desc(std::move(desc)) {
     for (int i = 0; i < int(m_desc.objects.size()); ++i)
         (m_desc.objects[size_t(i)].is_dynamic() ? m_dynamic : m_static).push_back(i);
     m_segments = split_into_segments(m_desc);
+    m_bounds = animation_bounds(m_desc);
 }
 
 const Segment& Scene::segment_of(int frame) const {

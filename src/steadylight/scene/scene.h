@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "steadylight/base/bounding_sphere.h"
 #include "steadylight/base/ray.h"
 #include "steadylight/scene/scene_desc.h"
 
@@ -66,12 +67,17 @@ public:
     FrameState evaluate(int frame) const;
     /// Overrides the output resolution (from --size), keeping everything else.
     void set_resolution(int width, int height);
+    /// A sphere holding every object at every frame of the animation: what light from far away
+    /// (a sun, the world) is aimed at. One for the whole animation, so that photons from far
+    /// away start the same way in every frame (the static and dynamic photon paths agree).
+    const BoundingSphere& bounds() const { return m_bounds; }
 
 private:
     SceneDesc m_desc;
     std::vector<int> m_static;
     std::vector<int> m_dynamic;
     std::vector<Segment> m_segments;
+    BoundingSphere m_bounds;
 };
 
 }  // namespace steadylight

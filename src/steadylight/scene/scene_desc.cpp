@@ -244,7 +244,7 @@ PointLightDesc parse_point_light(const JsonObject& json) {
         if (!(light.falloff_start_deg >= 0 && light.falloff_start_deg <= light.cone_angle_deg))
             json.fail("falloff_start_degrees", "must lie in [0, cone_degrees]");
     } else {
-        json.fail("type", "unknown light type \"" + type + "\" (point or spot)");
+        json.fail("type", "unknown light type \"" + type + "\" (point, spot or sun)");
     }
     light.name = json.string("name", type);
     light.position = json.vec3("position");
@@ -413,6 +413,13 @@ void validate(const SceneDesc& desc) {
             throw InputError(where, "position or intensity is not finite");
         validate_light_track(light.intensity_track, where + " intensity");
     }
+    for (const SunLightDesc& sun : desc.suns) {
+        const std::string where = file + ": sun \"" + sun.name + "\"";
+        if (!is_finite(sun.direction) || !(length(sun.direction) > 0) || !is_finite(sun.irradiance))
+            throw InputError(where, "direction or irradiance is not finite, or the direction is zero");
+    }
+    if (desc.world && (!is_finite(desc.world->color) || !std::isfinite(desc.world->strength)))
+        throw InputError(file + ": world", "colour or strength is not finite");
 }
 
 std::string describe_fps_source(const SceneDesc& desc) {
@@ -425,6 +432,48 @@ std::string describe_fps_source(const SceneDesc& desc) {
             break;
     }
     return "default";
+}
+
+SunLightDesc parse_sun_light(const JsonObject& json) {
+    SunLightDesc sun;
+    sun.name = json.string("name", "sun");
+    sun.direction = json.vec3("direction");
+    if (!(length(sun.direction) > 0)) json.fail("direction", "must not be zero: it is the way the light travels");
+    sun.direction = normalize(sun.direction);
+    sun.irradiance = json.rgb("irradiance", {});
+    for (int c = 0; c < 3; ++c)
+        if (sun.irradiance[c] < 0) json.fail("irradiance", "must not be negative");
+    sun.angle_deg = json.number("angle_degrees", sun.angle_deg);
+    if (!(sun.angle_deg >= 0 && sun.angle_deg <= SunLightDesc::max_angle_deg))
+        json.fail("angle_degrees", fmt::format("must lie in [0, {}]", SunLightDesc::max_angle_deg));
+    json.warn_unread();
+    return sun;
+}
+
+WorldDesc parse_world(const JsonObject& json) {
+    WorldDesc world;
+    world.color = json.rgb("color", {0.05f, 0.05f, 0.05f});  // Blender's default World
+    for (int c = 0; c < 3; ++c)
+        if (world.color[c] < 0) json.fail("color", "must not be negative");
+    world.strength = json.number("strength", world.strength);
+    if (!(world.strength >= 0)) json.fail("strength", "must not be negative");
+    json.warn_unread();
+    return world;
+}
+
+/// A glTF's suns take the angles a wrapper JSON gives them by light node name
+/// ("sun_angles_degrees": {"Sun": 1.5}): glTF carries no angle.
+void apply_sun_angles(const JsonObject& root, SceneDesc& desc) {
+    const JsonObject angles = root.object("sun_angles_degrees");
+    for (const auto& [name, value] : root.members("sun_angles_degrees")) {
+        (void)value;
+        const auto sun =
+            std::find_if(desc.suns.begin(), desc.suns.end(), [&name](const SunLightDesc& s) { return s.name == name; });
+        if (sun == desc.suns.end()) angles.fail(name, "no sun light of that name in the scene");
+        sun->angle_deg = angles.number(name);
+        if (!(sun->angle_deg >= 0 && sun->angle_deg <= SunLightDesc::max_angle_deg))
+            angles.fail(name, fmt::format("must lie in [0, {}]", SunLightDesc::max_angle_deg));
+    }
 }
 
 SceneDesc load_scene_desc(const std::string& path, bool confine_inputs) {
@@ -486,7 +535,14 @@ SceneDesc load_scene_desc(const std::string& path, bool confine_inputs) {
             desc.objects.push_back(parse_object(objects[i], material_index, black_material, inputs, int(i)));
     }
     if (root.has("lights"))
-        for (const JsonObject& light : root.objects("lights")) desc.point_lights.push_back(parse_point_light(light));
+        for (const JsonObject& light : root.objects("lights")) {
+            if (light.has("type") && light.string("type") == "sun")
+                desc.suns.push_back(parse_sun_light(light));
+            else
+                desc.point_lights.push_back(parse_point_light(light));
+        }
+    if (root.has("sun_angles_degrees")) apply_sun_angles(root, desc);
+    if (root.has("world")) desc.world = parse_world(root.object("world"));
     root.warn_unread();
 
     validate(desc);

@@ -116,6 +116,28 @@ struct PointLightDesc {
     bool is_intensity_animated() const { return intensity_track && !intensity_track->is_constant(); }
 };
 
+/// The sun, or any light so far away that its rays arrive parallel: `irradiance` (W/m² per
+/// channel) on a surface facing it, arriving within a cone of angular diameter `angle_deg` about
+/// `direction`, the unit direction the light travels (0: a hard shadow's delta light).
+struct SunLightDesc {
+    std::string name;
+    Vec3 direction{0, -1, 0};
+    Rgb irradiance;
+    float angle_deg = default_sun_angle_deg;
+
+    static constexpr float default_sun_angle_deg = 0.53f;  // the real sun's
+    static constexpr float max_angle_deg = 90;
+};
+
+/// Light from far away in every direction (Blender's World): radiance `color` × `strength` from
+/// every direction, in the units of an emitter's radiance (Blender's Background shader).
+struct WorldDesc {
+    Rgb color;
+    float strength = 1;
+
+    Rgb radiance() const { return color * strength; }
+};
+
 /// A pinhole camera looking down its local -z with +y up (the glTF convention).
 struct CameraDesc {
     std::vector<AnimatedTrs> placement;  // world_from_camera
@@ -139,6 +161,8 @@ struct SceneDesc {
     std::vector<TextureImage> images;  // what MaterialDesc's TextureRefs point at
     std::vector<ObjectDesc> objects;
     std::vector<PointLightDesc> point_lights;
+    std::vector<SunLightDesc> suns;
+    std::optional<WorldDesc> world;
     int frame_count = 1;
     float fps = 24;
     FpsSource fps_source = FpsSource::default_rate;

@@ -64,7 +64,7 @@ public:
           m_area(4 * pi * radius * radius),
           m_bound_radius(radius) {}
 
-    std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const override {
+    std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3) const override {
         LightSample s;
         Rgb tint;
         const std::optional<SphericalRectangle> seen = seen_by_solid_angle(ref);

@@ -1,9 +1,11 @@
-// Lights: emissive objects (area lights) and point and spot lights, and the LightSet that picks
-// one in proportion to its power for next-event estimation. Built per frame, since emissive
+// Lights: emissive objects (area lights), point and spot lights, and lights from far away (suns
+// and the world), and the LightSet that picks one in proportion to its power for next-event
+// estimation. Built per frame, since emissive
 // objects may move and lights may be switched or dimmed (FrameState's emission and intensity).
 // Interface here, one file per kind of light.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -16,12 +18,12 @@ namespace steadylight {
 
 /// A point on a light chosen for a shading point `ref`.
 struct LightSample {
-    Vec3 p;   // on the light
-    Vec3 n;   // the light's normal at p (zero for point lights)
-    Vec3 wi;  // unit direction from ref towards p
-    float distance = 0;
-    Rgb Li;         // radiance arriving at ref along -wi (for point lights: intensity / distance^2)
-    float pdf = 0;  // solid angle at ref (point lights: 1), times the probability of the light
+    Vec3 p;              // on the light (lights from far away: a point along wi beyond the scene)
+    Vec3 n;              // the light's normal at p (zero for point lights and lights from far away)
+    Vec3 wi;             // unit direction from ref towards p
+    float distance = 0;  // infinity for lights from far away
+    Rgb Li;              // radiance arriving at ref along -wi (for point lights: intensity / distance^2)
+    float pdf = 0;       // solid angle at ref (point lights: 1), times the probability of the light
     bool is_delta = false;
 };
 
@@ -46,9 +48,15 @@ class Light {
 public:
     virtual ~Light() = default;
     /// Samples a point as seen from `ref`; pdf in solid angle, not counting light selection.
-    virtual std::optional<LightSample> sample_li(Vec3 ref, Vec2 u) const = 0;
+    /// `n`, the surface normal at ref (zero where there is none), lets light from every
+    /// direction favour the hemisphere it faces.
+    virtual std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3 n) const = 0;
     /// The solid-angle pdf sample_li would give for reaching `p` (normal `n`) from `ref`.
     virtual float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const = 0;
+    /// What a ray leaving the scene along unit `w` sees of this light (lights from far away)...
+    virtual Rgb escaped_radiance(Vec3 /*w*/) const { return {}; }
+    /// ...and the solid-angle pdf sample_li gives `w` for a point of normal `n`.
+    virtual float pdf_escaped(Vec3 /*w*/, Vec3 /*n*/) const { return 0; }
     /// Total emitted power (luminance of W), used to choose lights.
     virtual float power() const = 0;
     /// \brief An upper estimate of the luminance of irradiance the light could give a surface
@@ -62,7 +70,8 @@ public:
     /// \brief Radiant intensity leaving `at` towards unit `d`, per unit of `at`'s pdf measure:
     /// Le |cos| on an emitting side of an area light (zero on the other), a lamp's intensity.
     virtual Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const = 0;
-    /// A sphere holding every point the light emits from (a point light's has radius 0).
+    /// A sphere holding every point the light emits from (a point light's has radius 0), or for
+    /// a light from far away one that every shadow ray towards it crosses beyond the scene.
     virtual BoundingSphere bounds() const = 0;
 };
 
@@ -71,6 +80,15 @@ public:
 std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& frame, int object);
 /// A point or spot light with radiant intensity `intensity` (the lamp's at the frame).
 std::unique_ptr<Light> make_point_light(const PointLightDesc& desc, Rgb intensity);
+/// A sun, and the world, whose photons cover `scene` (Scene::bounds()).
+std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene);
+std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene);
+
+/// The shadow ray from surface point `p` (geometric normal `ng`) towards a sampled light: to its
+/// point, or open-ended towards a light from far away.
+inline Ray shadow_ray(const LightSample& light, Vec3 p, Vec3 ng) {
+    return std::isinf(light.distance) ? spawn_ray(p, ng, light.wi) : spawn_ray_to(p, ng, light.p);
+}
 
 class LightSet {
 public:
@@ -79,8 +97,9 @@ public:
     LightSet(const Scene& scene, const FrameState& frame);
 
     bool empty() const { return m_lights.empty(); }
-    /// Picks a light with `u_select` and samples it; the pdf includes the choice.
-    std::optional<LightSample> sample(Vec3 ref, float u_select, Vec2 u) const;
+    /// Picks a light with `u_select` and samples it (for a point of normal `n`, when known:
+    /// Light::sample_li); the pdf includes the choice.
+    std::optional<LightSample> sample(Vec3 ref, float u_select, Vec2 u, Vec3 n = {}) const;
     /// \brief Picks a light with u.x and samples it with (the remainder of u.x within the
     /// light's share, u.y); the pdf is sample()'s. Stratified u then stratify each light's
     /// area as well as the choice.
@@ -104,17 +123,24 @@ public:
     std::vector<BoundingSphere> bounds() const;
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
     float pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const;
+    /// What a ray leaving the scene along unit `w` sees: the lights from far away.
+    Rgb escaped_radiance(Vec3 w) const;
+    /// escaped_radiance() for a ray sampled with solid-angle pdf `bsdf_pdf` at a point of normal
+    /// `n`: each light's part weighted by the power heuristic against sample() choosing that
+    /// light and sampling `w` from it.
+    Rgb escaped_radiance(Vec3 w, Vec3 n, float bsdf_pdf) const;
 
 private:
     std::vector<std::unique_ptr<Light>> m_lights;
     std::vector<float> m_cdf;            // over m_lights, by power
     std::vector<int> m_light_of_object;  // object -> index in m_lights, or -1
+    size_t m_first_distant = 0;          // the lights from far away come last
 
     /// The light `u_select` picks and the probability of picking it.
     std::pair<size_t, float> choose(float u_select) const;
     /// Samples light `i`, chosen with probability `p_select` by u.x in [lo, lo + p_select): the
     /// rest of u.x, rescaled to [0,1), and u.y place the point on it; the pdf includes the choice.
-    std::optional<LightSample> sample_chosen(size_t i, float lo, float p_select, Vec3 ref, Vec2 u) const;
+    std::optional<LightSample> sample_chosen(size_t i, float lo, float p_select, Vec3 ref, Vec3 n, Vec2 u) const;
 };
 
 /// \brief An upper estimate of `intensity` cos_ref cos_light / distance^2 over a light inside the

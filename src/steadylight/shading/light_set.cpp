@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 
+#include "steadylight/base/sampling.h"
 #include "steadylight/shading/light.h"
 
 namespace steadylight {
@@ -40,6 +41,11 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_obj
     for (size_t i = 0; i < scene.desc().point_lights.size(); ++i)
         if (!is_black(frame.point_light_intensity[i]))
             m_lights.push_back(make_point_light(scene.desc().point_lights[i], frame.point_light_intensity[i]));
+    m_first_distant = m_lights.size();
+    for (const SunLightDesc& sun : scene.desc().suns)
+        if (!is_black(sun.irradiance)) m_lights.push_back(make_sun_light(sun, scene.bounds()));
+    if (scene.desc().world && !is_black(scene.desc().world->radiance()))
+        m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds()));
 
     // Choose lights in proportion to power; uniformly if none has any.
     float total = 0;
@@ -76,11 +82,11 @@ std::optional<EmissionPoint> LightSet::sample_emission_point(float u_select, Vec
     return at;
 }
 
-std::optional<LightSample> LightSet::sample(Vec3 ref, float u_select, Vec2 u) const {
+std::optional<LightSample> LightSet::sample(Vec3 ref, float u_select, Vec2 u, Vec3 n) const {
     if (m_lights.empty()) return std::nullopt;
     const auto [i, p_select] = choose(u_select);
     if (p_select <= 0) return std::nullopt;
-    std::optional<LightSample> s = m_lights[i]->sample_li(ref, u);
+    std::optional<LightSample> s = m_lights[i]->sample_li(ref, u, n);
     if (!s || !(s->pdf > 0)) return std::nullopt;
     s->pdf *= p_select;
     return s;
@@ -90,13 +96,13 @@ std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec2 u) const {
     if (m_lights.empty()) return std::nullopt;
     const auto [i, p_select] = choose(u.x);
     if (p_select <= 0) return std::nullopt;
-    return sample_chosen(i, i ? m_cdf[i - 1] : 0, p_select, ref, u);
+    return sample_chosen(i, i ? m_cdf[i - 1] : 0, p_select, ref, {}, u);
 }
 
-std::optional<LightSample> LightSet::sample_chosen(size_t i, float lo, float p_select, Vec3 ref, Vec2 u) const {
+std::optional<LightSample> LightSet::sample_chosen(size_t i, float lo, float p_select, Vec3 ref, Vec3 n, Vec2 u) const {
     // u.x is uniform over the chosen light's share of [0,1): rescaled, it is uniform again.
     const float u_light = std::clamp((u.x - lo) / p_select, 0.0f, 0x1.fffffep-1f);
-    std::optional<LightSample> s = m_lights[i]->sample_li(ref, {u_light, u.y});
+    std::optional<LightSample> s = m_lights[i]->sample_li(ref, {u_light, u.y}, n);
     if (!s || !(s->pdf > 0)) return std::nullopt;
     s->pdf *= p_select;
     return s;
@@ -119,7 +125,7 @@ std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec3 n, Vec2 u) co
         std::min(size_t(std::upper_bound(cdf.begin(), cdf.begin() + long(count), u.x) - cdf.begin()), count - 1);
     const float lo = i ? cdf[i - 1] : 0, p_select = cdf[i] - lo;
     if (!(p_select > 0)) return std::nullopt;
-    return sample_chosen(i, lo, p_select, ref, u);
+    return sample_chosen(i, lo, p_select, ref, n, u);
 }
 
 std::vector<BoundingSphere> LightSet::bounds() const {
@@ -133,6 +139,23 @@ float LightSet::pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const {
     if (i < 0) return 0;
     const float p_select = m_cdf[size_t(i)] - (i ? m_cdf[size_t(i) - 1] : 0);
     return p_select * m_lights[size_t(i)]->pdf_li(ref, p, n);
+}
+
+Rgb LightSet::escaped_radiance(Vec3 w) const {
+    Rgb L;
+    for (size_t i = m_first_distant; i < m_lights.size(); ++i) L += m_lights[i]->escaped_radiance(w);
+    return L;
+}
+
+Rgb LightSet::escaped_radiance(Vec3 w, Vec3 n, float bsdf_pdf) const {
+    Rgb L;
+    for (size_t i = m_first_distant; i < m_lights.size(); ++i) {
+        const Rgb Le = m_lights[i]->escaped_radiance(w);
+        if (is_black(Le)) continue;
+        const float light_pdf = (m_cdf[i] - (i ? m_cdf[i - 1] : 0)) * m_lights[i]->pdf_escaped(w, n);
+        L += Le * power_heuristic(bsdf_pdf, light_pdf);
+    }
+    return L;
 }
 
 }  // namespace steadylight

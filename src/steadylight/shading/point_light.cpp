@@ -18,7 +18,7 @@ public:
           m_cos_cone(std::cos(desc.cone_angle_deg * pi / 180)),
           m_cos_falloff_start(std::cos(desc.falloff_start_deg * pi / 180)) {}
 
-    std::optional<LightSample> sample_li(Vec3 ref, Vec2) const override {
+    std::optional<LightSample> sample_li(Vec3 ref, Vec2, Vec3) const override {
         LightSample s;
         s.p = m_desc.position;
         const Vec3 d = s.p - ref;
