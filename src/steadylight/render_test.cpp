@@ -80,7 +80,7 @@ TEST(Info, NamesAnimatedLightsAndTheSegmentsTheyMake) {
     const std::string text = describe_scene(std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/scenes/light_switch.json");
     EXPECT_NE(text.find("2 segment(s): 0-9, 10-19"), std::string::npos) << text;
     EXPECT_NE(text.find("emitter, animated emission"), std::string::npos) << text;
-    EXPECT_NE(text.find("lights: 1 area, 1 point/spot, 2 animated"), std::string::npos) << text;
+    EXPECT_NE(text.find("lights: 1 area, 1 point/spot, 0 sun, 2 animated"), std::string::npos) << text;
     EXPECT_NE(text.find("spot, animated intensity"), std::string::npos) << text;
 }
 
