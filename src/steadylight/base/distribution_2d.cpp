@@ -80,10 +80,14 @@ Distribution2D::Sample Distribution2D::sample(Vec2 u) const {
     return {{column.x, row.x}, row.pdf * column.pdf};
 }
 
+Distribution2D::Cell Distribution2D::cell(Vec2 uv) const {
+    const int row = m_marginal.cell(uv.y);
+    return {m_rows[size_t(row)].cell(uv.x), row};
+}
+
 float Distribution2D::pdf(Vec2 uv) const {
-    const int j = m_marginal.cell(uv.y);
-    const Distribution1D& row = m_rows[size_t(j)];
-    return m_marginal.cell_pdf(j) * row.cell_pdf(row.cell(uv.x));
+    const Cell at = cell(uv);
+    return m_marginal.cell_pdf(at.row) * m_rows[size_t(at.row)].cell_pdf(at.column);
 }
 
 }  // namespace steadylight

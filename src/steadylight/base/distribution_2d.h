@@ -1,7 +1,7 @@
 // Piecewise-constant distributions over [0,1) and [0,1)^2, built from non-negative weights per
 // cell, for sampling in proportion to a table (an environment image's luminance). The 2D one is a
 // marginal distribution over the rows and a conditional one within each row (Pharr, Jakob and
-// Humphreys, "Physically Based Rendering", 4th ed., §A.5). A cell of weight zero is never
+// Humphreys, "Physically Based Rendering", 3rd ed., §13.6.7). A cell of weight zero is never
 // sampled and has pdf zero, unless every weight is zero: then the distribution is uniform.
 #pragma once
 
@@ -60,6 +60,11 @@ public:
     Sample sample(Vec2 u) const;
     /// The density at uv over [0, 1]^2: the cell's weight over the mean weight.
     float pdf(Vec2 uv) const;
+    /// The cell that holds uv (uv outside [0, 1)^2 counts as the nearest cell).
+    struct Cell {
+        int column = 0, row = 0;
+    };
+    Cell cell(Vec2 uv) const;
     int width() const { return int(m_rows.empty() ? 0 : m_rows.front().size()); }
     int height() const { return int(m_rows.size()); }
     double mean_weight() const { return m_marginal.mean_weight(); }
