@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -163,8 +164,28 @@ TEST(WorldImage, OtherFilesAreRefusedAsNotAWorldImage) {
     const std::string path = write_bytes("sky.png", "\x89PNG\r\n\x1a\n");
     EXPECT_EQ(input_error_of([&] { load_world_image(path); }),
               path + ": not an EXR or Radiance HDR image, which a world image must be");
-    const std::string damaged = write_bytes("damaged.exr", std::string("\x76\x2f\x31\x01\x02\0\0\0garbage", 15));
-    EXPECT_NE(input_error_of([&] { load_world_image(damaged); }).find("damaged.exr: cannot read EXR"),
+}
+
+std::string read_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A header cut short, an attribute whose stated size runs past the end of the file (OpenEXR would
+// allocate that size first), and pixel data cut short.
+TEST(WorldImage, DamagedExrFilesAreRefused) {
+    EXPECT_EQ(input_error_of([] { decode_world_image(std::string("\x76\x2f\x31\x01\x02\0\0\0garbage", 15), "a.exr"); }),
+              "a.exr: a damaged EXR image (the file ends inside its header)");
+    const std::string whole = read_bytes(exr_file("whole.exr", ramp(16, 8)));
+    std::string oversized = whole;
+    const size_t size_at = oversized.find(std::string("channels\0chlist\0", 16)) + 16;
+    oversized.replace(size_at, 4, "\xff\xff\xff\x7f");
+    EXPECT_EQ(input_error_of([&] { decode_world_image(oversized, "b.exr"); }),
+              "b.exr: a damaged EXR image (its attribute \"channels\" of 2147483647 bytes runs past the end of the "
+              "file)");
+    EXPECT_NE(input_error_of([&] {
+                  decode_world_image(whole.substr(0, whole.size() - 20), "c.exr");
+              }).find("c.exr: cannot read EXR"),
               std::string::npos);
 }
 
