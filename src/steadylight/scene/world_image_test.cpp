@@ -86,6 +86,11 @@ std::string exr_file(const std::string& name, const Image& image, const ExrOptio
     return path;
 }
 
+std::string read_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 /// A Radiance HDR file's header for width x height in the standard orientation.
 std::string hdr_header(int width, int height) {
     return "#?RADIANCE\n# a comment\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=1.0\n\n-Y " + std::to_string(height) + " +X " +
@@ -166,11 +171,6 @@ TEST(WorldImage, OtherFilesAreRefusedAsNotAWorldImage) {
               path + ": not an EXR or Radiance HDR image, which a world image must be");
 }
 
-std::string read_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // A header cut short, an attribute whose stated size runs past the end of the file (OpenEXR would
 // allocate that size first), and pixel data cut short.
 TEST(WorldImage, DamagedExrFilesAreRefused) {
@@ -210,6 +210,13 @@ TEST(WorldImage, AnImageBeyondTheTextureLimitsIsRefusedFromItsHeader) {
                   load_world_image(write_bytes("wide.hdr", hdr_header(16000, 8000)));
               }).find("too large (16000 x 8000 texels"),
               std::string::npos);
+    // An EXR whose data window says 16 million pixels wide, with 8 x 4 pixels of data.
+    std::string exr = read_bytes(exr_file("small.exr", ramp(8, 4)));
+    const size_t window_at = exr.find(std::string("dataWindow\0box2i\0", 17)) + 17 + 4;
+    exr.replace(window_at + 8, 4, std::string("\xff\xff\xff\x00", 4));  // xMax = 2^24 - 1
+    EXPECT_EQ(input_error_of([&] { decode_world_image(exr, "wide.exr"); }),
+              "wide.exr: the world image is too large (16777216 x 4 texels; at most 16384 on a side and 8192 x 8192 in "
+              "all)");
 }
 
 TEST(WorldImage, NanAndInfinitePixelsAreRefusedNamingTheFirst) {
