@@ -1,6 +1,8 @@
 // Reading EXR images (OpenEXR) as linear RGB: one layer's R, G and B channels, or the Y channel of
-// a grey layer. It sits in scene/ because world images are scene input (world_image.h); the
-// writer's read_exr (output/image_writer.h: frames, for tests and tools) reads through it too.
+// a grey layer. The headers are read first by OpenEXRCore, the library's newer C reader, which
+// checks them against the file before taking memory (exr_reading.cpp says why), then the pixels
+// by the C++ library. It sits in scene/ because world images are scene input (world_image.h);
+// the writer's read_exr (output/image_writer.h: frames, for tests and tools) reads through it.
 #pragma once
 
 #include <string>

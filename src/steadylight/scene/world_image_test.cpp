@@ -171,21 +171,25 @@ TEST(WorldImage, OtherFilesAreRefusedAsNotAWorldImage) {
               path + ": not an EXR or Radiance HDR image, which a world image must be");
 }
 
-// A header cut short, an attribute whose stated size runs past the end of the file (OpenEXR would
-// allocate that size first), and pixel data cut short.
+// A header cut short, attributes whose stated size runs past the end of the file (OpenEXR's C++
+// reader would allocate that size first), and pixel data cut short.
 TEST(WorldImage, DamagedExrFilesAreRefused) {
     EXPECT_EQ(input_error_of([] { decode_world_image(std::string("\x76\x2f\x31\x01\x02\0\0\0garbage", 15), "a.exr"); }),
-              "a.exr: a damaged EXR image (the file ends inside its header)");
+              "a.exr: cannot read EXR: End of file attempting to read header");
     const std::string whole = read_bytes(exr_file("whole.exr", ramp(16, 8)));
     std::string oversized = whole;
     const size_t size_at = oversized.find(std::string("channels\0chlist\0", 16)) + 16;
     oversized.replace(size_at, 4, "\xff\xff\xff\x7f");
     EXPECT_EQ(input_error_of([&] { decode_world_image(oversized, "b.exr"); }),
-              "b.exr: a damaged EXR image (its attribute \"channels\" of 2147483647 bytes runs past the end of the "
-              "file)");
+              "b.exr: cannot read EXR: Attribute 'channels', type 'chlist': Invalid size 2147483647");
+    // An attribute of a type OpenEXR does not know, stated as 2 GB.
+    const std::string unknown =
+        whole.substr(0, 8) + std::string("junk\0mytype\0\xff\xff\xff\x7f", 16) + whole.substr(8);
+    EXPECT_NE(input_error_of([&] { decode_world_image(unknown, "c.exr"); }).find("c.exr: cannot read EXR: "),
+              std::string::npos);
     EXPECT_NE(input_error_of([&] {
-                  decode_world_image(whole.substr(0, whole.size() - 20), "c.exr");
-              }).find("c.exr: cannot read EXR"),
+                  decode_world_image(whole.substr(0, whole.size() - 20), "d.exr");
+              }).find("d.exr: cannot read EXR"),
               std::string::npos);
 }
 
