@@ -26,7 +26,7 @@ Distribution1D::Distribution1D(std::vector<float> weights) : m_weights(std::move
         std::fill(m_weights.begin(), m_weights.end(), 1.0f);
         total = n;
     }
-    m_inv_mean = float(n / total);
+    m_inv_mean = n / total;
     // The cumulative distribution, flat across a zero cell (copied, not recomputed, so that
     // rounding cannot give it a sliver of width) and exactly 1 from the last non-zero cell on.
     m_cdf.assign(size_t(n) + 1, 0.0f);
@@ -45,7 +45,7 @@ int Distribution1D::cell(float x) const {
     return x >= 1 ? size() - 1 : std::min(int(x * float(size())), size() - 1);
 }
 
-float Distribution1D::cell_pdf(int index) const { return m_weights[size_t(index)] * m_inv_mean; }
+float Distribution1D::cell_pdf(int index) const { return float(m_weights[size_t(index)] * m_inv_mean); }
 
 Distribution1D::Sample Distribution1D::sample(float u) const {
     u = std::clamp(u, 0.0f, one_minus_epsilon);

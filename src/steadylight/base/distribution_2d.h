@@ -39,7 +39,7 @@ private:
     std::vector<float> m_weights;  // uniform (all 1) when the given ones are all zero
     std::vector<float> m_cdf;      // size() + 1 values from 0 to exactly 1; flat across zero cells
     double m_mean = 0;             // of the given weights
-    float m_inv_mean = 0;          // of m_weights
+    double m_inv_mean = 0;         // of m_weights; in double, as a float overflows for weights near 1e-38
 };
 
 /// A piecewise-constant distribution over [0, 1)^2 with width x height cells, from weights laid

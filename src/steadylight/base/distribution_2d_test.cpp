@@ -87,6 +87,16 @@ TEST(Distribution1D, SampleInvertsTheCumulativeDistribution) {
     EXPECT_LT(last.x, 0.75f);
 }
 
+// Weights near the smallest floats (their mean's inverse is beyond the largest) or the largest.
+TEST(Distribution1D, PdfDoesNotDependOnTheWeightsScale) {
+    for (const float scale : {1e-44f, 1e-30f, 1.0f, 1e37f}) {
+        const Distribution1D distribution({scale, 3 * scale});
+        EXPECT_FLOAT_EQ(distribution.pdf(0.1f), 0.5f) << scale;
+        EXPECT_FLOAT_EQ(distribution.pdf(0.9f), 1.5f) << scale;
+        EXPECT_FLOAT_EQ(distribution.sample(0.625f).x, 0.75f) << scale;
+    }
+}
+
 TEST(Distribution1D, AllZeroWeightsGiveTheUniformDistribution) {
     const Distribution1D distribution(std::vector<float>(4, 0.0f));
     EXPECT_EQ(distribution.mean_weight(), 0.0);

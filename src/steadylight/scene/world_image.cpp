@@ -14,12 +14,12 @@
 namespace steadylight {
 namespace {
 
-/// Refuses, before its pixels are read, an image beyond the texture limits or not 2:1.
 /// The most negative a pixel value may be, as a share of the image's mean value, to count as
 /// the noise of lossy compression (read as 0) rather than a broken image. Blender's own world
 /// images (DWAB-compressed EXRs) go down to 2.5% of their mean.
 constexpr float negative_noise_share = 0.1f;
 
+/// Refuses, before its pixels are read, an image beyond the texture limits or not 2:1.
 void check_world_image_size(int64_t width, int64_t height, const std::string& where) {
     if (width > max_image_side || height > max_image_side || width * height > max_image_texels)
         throw InputError(where, fmt::format("the world image is too large ({} x {} texels; at most {} on a side and "

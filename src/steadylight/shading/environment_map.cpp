@@ -63,13 +63,18 @@ EnvironmentMap::EnvironmentMap(Image image, float strength, float rotation_degre
     const double mean_pixel_luminance = weighted / (4 * std::acos(-1.0));
     m_mean_luminance = float(mean_pixel_luminance * strength);
     // Sampling weights: luminance (plus the floor) times the pixel's solid angle, which is
-    // proportional to sin θ at its centre.
-    const float floor = luminance_floor_share * float(mean_pixel_luminance);
+    // proportional to sin θ at its centre; over the brightest pixel's luminance, so that neither
+    // the floor nor the weights' sums leave the range of floats whatever the image's scale.
+    double brightest = 0;
+    for (const Rgb& p : m_image.pixels) brightest = std::max(brightest, double(luminance(p)));
+    const double scale = brightest > 0 ? 1 / brightest : 1;
+    const double floor = luminance_floor_share * mean_pixel_luminance;
     std::vector<float> weights(m_image.pixels.size());
     for (int j = 0; j < height; ++j) {
-        const float sin_theta = row_sin_theta(j, height);
+        const double sin_theta = row_sin_theta(j, height);
         for (int i = 0; i < width; ++i)
-            weights[size_t(j) * size_t(width) + size_t(i)] = (luminance(m_image.at(i, j)) + floor) * sin_theta;
+            weights[size_t(j) * size_t(width) + size_t(i)] =
+                float((luminance(m_image.at(i, j)) + floor) * scale * sin_theta);
     }
     m_distribution = Distribution2D(weights, width, height);
 }

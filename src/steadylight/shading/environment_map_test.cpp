@@ -226,6 +226,24 @@ TEST(EnvironmentMap, PdfAgreesWithSamplesAndIntegratesToOne) {
     }
 }
 
+// Sampling follows the picture, not its units: an image scaled down to the smallest floats or up
+// towards the largest gives the same pdf.
+TEST(EnvironmentMap, PdfDoesNotDependOnTheImagesScale) {
+    Image image = smooth_image(64, 32);
+    image.at(5, 5) = {};
+    const EnvironmentMap reference(image, 1, 0);
+    for (const float scale : {1e-40f, 1e30f}) {
+        Image scaled = image;
+        for (Rgb& p : scaled.pixels) p *= scale;
+        const EnvironmentMap map(scaled, 1, 0);
+        Pcg32 rng(12);
+        for (int i = 0; i < 1000; ++i) {
+            const Vec3 w = sample_uniform_sphere(rng.next_vec2());
+            ASSERT_NEAR(map.pdf(w), reference.pdf(w), 1e-4f * reference.pdf(w)) << scale << " " << to_string(w);
+        }
+    }
+}
+
 // A black pixel still has pdf > 0 (the floor), so that every direction with light in it can be
 // sampled; a map black everywhere gives no samples and pdf 0.
 TEST(EnvironmentMap, BlackPixelsKeepAPdfAndABlackMapHasNone) {
