@@ -6,6 +6,7 @@
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfInputFile.h>
+#include <fmt/format.h>
 #include <openexr.h>
 
 #include <algorithm>
@@ -38,6 +39,10 @@ private:
     std::string_view m_bytes;
     uint64_t m_position = 0;
 };
+
+/// Tiles may be larger than the image they hold (a small image in the usual 64 x 64 tiles), but
+/// not larger on a side than this or the image.
+constexpr int64_t max_tile_side = 1024;
 
 /// `text` safe to print: at most 200 characters, other than printable ASCII shown as '?' (the
 /// library's messages quote bytes of the file).
@@ -76,17 +81,31 @@ public:
 
     /// Why the headers could not be read, or "" when they could.
     const std::string& problem() const { return m_problem; }
-    /// The width and height of each part's data window.
-    std::vector<std::pair<int64_t, int64_t>> window_sizes() const {
-        std::vector<std::pair<int64_t, int64_t>> sizes;
-        int parts = 0;
-        if (!m_context || exr_get_count(m_context, &parts) != EXR_ERR_SUCCESS) return sizes;
-        for (int part = 0; part < parts; ++part) {
+    /// The size of a part's data window, and of its tiles (0 x 0 for scanlines).
+    struct Part {
+        int64_t width = 0, height = 0;
+        int64_t tile_width = 0, tile_height = 0;
+    };
+    std::vector<Part> parts() const {
+        std::vector<Part> parts;
+        int count = 0;
+        if (!m_context || exr_get_count(m_context, &count) != EXR_ERR_SUCCESS) return parts;
+        for (int index = 0; index < count; ++index) {
             exr_attr_box2i_t window{};
-            if (exr_get_data_window(m_context, part, &window) == EXR_ERR_SUCCESS)
-                sizes.emplace_back(int64_t(window.max.x) - window.min.x + 1, int64_t(window.max.y) - window.min.y + 1);
+            if (exr_get_data_window(m_context, index, &window) != EXR_ERR_SUCCESS) continue;
+            Part& part = parts.emplace_back();
+            part.width = int64_t(window.max.x) - window.min.x + 1;
+            part.height = int64_t(window.max.y) - window.min.y + 1;
+            uint32_t tile_width = 0, tile_height = 0;
+            exr_tile_level_mode_t levels{};
+            exr_tile_round_mode_t rounding{};
+            if (exr_get_tile_descriptor(m_context, index, &tile_width, &tile_height, &levels, &rounding) ==
+                EXR_ERR_SUCCESS) {
+                part.tile_width = tile_width;
+                part.tile_height = tile_height;
+            }
         }
-        return sizes;
+        return parts;
     }
 
 private:
@@ -133,8 +152,16 @@ Image decode_exr(std::string_view bytes, const std::string& where, const std::st
     {
         const CoreHeaders headers(bytes, where);
         if (!headers.problem().empty()) throw InputError(where, "cannot read EXR: " + headers.problem());
-        if (check_size)
-            for (const auto& [width, height] : headers.window_sizes()) check_size(width, height);
+        for (const CoreHeaders::Part& part : headers.parts()) {
+            if (check_size) check_size(part.width, part.height);
+            // The C++ reader allocates a tile's pixels for each of its threads: a tile far larger
+            // than the image (262144 x 1024 for 16 x 8, 2.4 GB; found by fuzzing) is damage.
+            if (part.tile_width > std::max<int64_t>(part.width, max_tile_side) ||
+                part.tile_height > std::max<int64_t>(part.height, max_tile_side))
+                throw InputError(where,
+                                 fmt::format("a damaged EXR image (tiles of {} x {} pixels in an image of {} x {})",
+                                             part.tile_width, part.tile_height, part.width, part.height));
+        }
     }
     try {
         MemoryStream stream(bytes, where);

@@ -7,6 +7,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
+#include <ImfTiledOutputFile.h>
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 #include <sys/stat.h>
@@ -48,6 +49,7 @@ struct ExrOptions {
     Imf::PixelType type = Imf::FLOAT;
     bool alpha = false;
     Imath::V2i origin{0, 0};  // where the data window starts
+    int tile = 0;             // the side of square tiles; 0 for scanlines
 };
 
 /// `image` as an EXR with channels R, G, B (and A = 0.5), through OpenEXR directly.
@@ -68,6 +70,13 @@ void write_test_exr(const std::string& path, const Image& image, const ExrOption
         header.channels().insert(names[c], Imf::Channel(options.type));
         const void* data = options.type == Imf::HALF ? static_cast<void*>(halves[c].data()) : floats[c].data();
         buffer.insert(names[c], Imf::Slice::Make(options.type, data, window));
+    }
+    if (options.tile > 0) {
+        header.setTileDescription(Imf::TileDescription(unsigned(options.tile), unsigned(options.tile)));
+        Imf::TiledOutputFile out(path.c_str(), header);
+        out.setFrameBuffer(buffer);
+        out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
+        return;
     }
     Imf::OutputFile out(path.c_str(), header);
     out.setFrameBuffer(buffer);
@@ -108,6 +117,9 @@ TEST(WorldImage, ExrReadsBackAsWrittenInEveryLayout) {
     // A data window that does not start at (0, 0), and rows in more than one block of reading.
     const Image tall = ramp(200, 100);
     EXPECT_EQ(load_world_image(exr_file("offset.exr", tall, {.origin = {-7, 30}})).pixels, tall.pixels);
+    // Tiles, larger than the image too.
+    EXPECT_EQ(load_world_image(exr_file("tiled.exr", tall, {.tile = 32})).pixels, tall.pixels);
+    EXPECT_EQ(load_world_image(exr_file("one_tile.exr", image, {.tile = 64})).pixels, image.pixels);
 }
 
 // DWAB, the lossy compression of Blender's world images, keeps a smooth image within about 1%.
@@ -172,7 +184,8 @@ TEST(WorldImage, OtherFilesAreRefusedAsNotAWorldImage) {
 }
 
 // A header cut short, attributes whose stated size runs past the end of the file (OpenEXR's C++
-// reader would allocate that size first), and pixel data cut short.
+// reader would allocate that size first), tiles far larger than the image, and pixel data cut
+// short.
 TEST(WorldImage, DamagedExrFilesAreRefused) {
     EXPECT_EQ(input_error_of([] { decode_world_image(std::string("\x76\x2f\x31\x01\x02\0\0\0garbage", 15), "a.exr"); }),
               "a.exr: cannot read EXR: End of file attempting to read header");
@@ -187,6 +200,12 @@ TEST(WorldImage, DamagedExrFilesAreRefused) {
         whole.substr(0, 8) + std::string("junk\0mytype\0\xff\xff\xff\x7f", 16) + whole.substr(8);
     EXPECT_NE(input_error_of([&] { decode_world_image(unknown, "c.exr"); }).find("c.exr: cannot read EXR: "),
               std::string::npos);
+    // Tiles 262144 x 1024 for an image of 16 x 8 (the C++ reader allocates a tile for each thread).
+    std::string huge_tiles = read_bytes(exr_file("tiles.exr", ramp(16, 8), {.tile = 4}));
+    huge_tiles.replace(huge_tiles.find(std::string("tiles\0tiledesc\0", 15)) + 19, 8,
+                       std::string("\0\0\x04\0\0\x04\0\0", 8));
+    EXPECT_EQ(input_error_of([&] { decode_world_image(huge_tiles, "e.exr"); }),
+              "e.exr: a damaged EXR image (tiles of 262144 x 1024 pixels in an image of 16 x 8)");
     EXPECT_NE(input_error_of([&] {
                   decode_world_image(whole.substr(0, whole.size() - 20), "d.exr");
               }).find("d.exr: cannot read EXR"),
