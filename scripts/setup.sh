@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   ffmpeg   # optional at run time: only `render --video` and its test (skipped without it) use it
   slurm-wlm munge   # the farm test's one-node Slurm cluster (tests/farm/); `submit` needs sbatch only
+  blender-data   # Blender's world images (DWAB-compressed EXRs), which the world image tests read
   "$@"
 )
 

@@ -8,7 +8,6 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <thread>
@@ -16,18 +15,11 @@
 
 #include "steadylight/base/atomic_file.h"
 #include "steadylight/base/error.h"
+#include "steadylight/base/input_file.h"
+#include "steadylight/scene/exr_reading.h"
 
 namespace steadylight {
 namespace {
-
-/// The EXR channel names of a layer and which colour component each takes.
-std::vector<std::pair<std::string, int>> layer_channels(const std::string& layer, bool scalar) {
-    if (scalar) return {{(layer.empty() ? "" : layer + ".") + "Y", 0}};
-    const std::array<std::string, 3> rgb = {"R", "G", "B"};
-    std::vector<std::pair<std::string, int>> channels;
-    for (int c = 0; c < 3; ++c) channels.emplace_back(layer.empty() ? rgb[c] : layer + "." + rgb[c], c);
-    return channels;
-}
 
 /// `value` as a half, clamped to the largest finite half (65504): above it a half is +inf, which
 /// a compositor's blur would spread over the image. A NaN (which render_frame has replaced
@@ -75,7 +67,7 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
         channels.reserve(layers.size() * 3);
         const size_t pixel_size = type == ExrPixelType::half ? sizeof(half) : sizeof(float);
         for (const ExrLayer& layer : layers)
-            for (const auto& [name, component] : layer_channels(layer.name, layer.scalar)) {
+            for (const auto& [name, component] : exr_layer_channels(layer.name, layer.scalar)) {
                 ChannelData& data = channels.emplace_back(*layer.image, component, type);
                 header.channels().insert(name, Imf::Channel(imf_type(type)));
                 buffer.insert(name,
@@ -109,33 +101,7 @@ void write_png(const std::string& path, const Image& image, const ViewTransform&
 }
 
 Image read_exr(const std::string& path, const std::string& layer) {
-    try {
-        Imf::InputFile in(path.c_str());
-        const Imath::Box2i window = in.header().dataWindow();
-        const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
-        const std::string y_name = (layer.empty() ? "" : layer + ".") + "Y";
-        const bool scalar = in.header().channels().findChannel(y_name) != nullptr;
-        const auto names = layer_channels(layer, scalar);
-        std::vector<std::vector<float>> channels(names.size());
-        Imf::FrameBuffer buffer;
-        for (size_t c = 0; c < names.size(); ++c) {
-            if (!in.header().channels().findChannel(names[c].first))
-                throw std::runtime_error("no channel " + names[c].first);
-            channels[c].resize(size_t(width) * size_t(height));
-            char* origin = reinterpret_cast<char*>(channels[c].data()) -
-                           (size_t(window.min.x) + size_t(window.min.y) * size_t(width)) * sizeof(float);
-            buffer.insert(names[c].first, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(width)));
-        }
-        in.setFrameBuffer(buffer);
-        in.readPixels(window.min.y, window.max.y);
-        Image image(width, height);
-        for (size_t i = 0; i < image.pixels.size(); ++i)
-            image.pixels[i] = scalar ? Rgb{channels[0][i], channels[0][i], channels[0][i]}
-                                     : Rgb{channels[0][i], channels[1][i], channels[2][i]};
-        return image;
-    } catch (const std::exception& e) {
-        throw InputError(path, std::string("cannot read EXR: ") + e.what());
-    }
+    return decode_exr(read_input_file(path), path, layer);
 }
 
 std::vector<ExrChannelInfo> read_exr_channels(const std::string& path) {

@@ -37,8 +37,9 @@ void write_exr(const std::string& path, const Image& image);
 std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view = {});
 /// The image through `view` as an 8-bit sRGB PNG (encode_png written to `path`).
 void write_png(const std::string& path, const Image& image, const ViewTransform& view = {});
-/// Reads one layer of an EXR (for tests and tools): its R, G, B channels, or for a grey layer
-/// its Y channel copied into R, G and B.
+/// Reads one layer of an EXR (for tests and tools) with decode_exr (scene/exr_reading.h): its
+/// R, G, B channels, or for a grey layer its Y channel copied into R, G and B. Throws InputError
+/// naming the file.
 Image read_exr(const std::string& path, const std::string& layer = "");
 
 /// A channel of an EXR file as its header lists it (sorted by name).

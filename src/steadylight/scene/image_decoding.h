@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,10 @@ namespace steadylight {
 /// that one texture costs at most 256 MB as 8-bit RGBA (about three copies live while loading).
 constexpr int max_image_side = 16384;
 constexpr int64_t max_image_texels = int64_t(1) << 26;
+
+/// Called with an image's size once its header is read and before its pixels are: it throws
+/// to refuse the image (one too large, or of the wrong shape).
+using ImageSizeCheck = std::function<void(int64_t width, int64_t height)>;
 
 struct DecodedImage {
     int width = 0;
