@@ -7,8 +7,8 @@
 #include <cstdlib>
 
 #include "fuzz_harness.h"
+#include "steadylight/scene/environment_map.h"
 #include "steadylight/scene/world_image.h"
-#include "steadylight/shading/environment_map.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace steadylight;

@@ -42,7 +42,7 @@ bool has_light(const SceneDesc& desc) {
                        }) ||
            std::any_of(desc.suns.begin(), desc.suns.end(),
                        [](const SunLightDesc& sun) { return !is_black(sun.irradiance); }) ||
-           (desc.world && !is_black(desc.world->radiance()));
+           (desc.world && !desc.world->radiance->is_black());
 }
 
 Scene load_scene(const RenderSettings& settings) {
@@ -437,8 +437,7 @@ std::string describe_scene(const std::string& scene_file, bool confine_inputs) {
                             sun.name, sun.direction.x, sun.direction.y, sun.direction.z, luminance(sun.irradiance),
                             sun.angle_deg);
     if (desc.world) {
-        const Rgb L = desc.world->radiance();
-        text += fmt::format("world: uniform radiance ({:.3g}, {:.3g}, {:.3g})\n", L.r, L.g, L.b);
+        text += fmt::format("world: {}\n", desc.world->description);
     } else {
         text += "world: none (the background is black)\n";
     }

@@ -11,6 +11,8 @@
 #include "steadylight/scene/gltf_loader.h"
 #include "steadylight/scene/json_reader.h"
 #include "steadylight/scene/shapes.h"
+#include "steadylight/scene/sky_nishita.h"
+#include "steadylight/scene/world_image.h"
 
 namespace steadylight {
 namespace {
@@ -418,8 +420,6 @@ void validate(const SceneDesc& desc) {
         if (!is_finite(sun.direction) || !(length(sun.direction) > 0) || !is_finite(sun.irradiance))
             throw InputError(where, "direction or irradiance is not finite, or the direction is zero");
     }
-    if (desc.world && (!is_finite(desc.world->color) || !std::isfinite(desc.world->strength)))
-        throw InputError(file + ": world", "colour or strength is not finite");
 }
 
 std::string describe_fps_source(const SceneDesc& desc) {
@@ -433,6 +433,14 @@ std::string describe_fps_source(const SceneDesc& desc) {
     }
     return "default";
 }
+
+WorldDesc WorldDesc::uniform(Rgb radiance) {
+    return {
+        .radiance = std::make_shared<EnvironmentMap>(radiance),
+        .description = fmt::format("uniform radiance ({:.3g}, {:.3g}, {:.3g})", radiance.r, radiance.g, radiance.b)};
+}
+
+namespace {
 
 SunLightDesc parse_sun_light(const JsonObject& json) {
     SunLightDesc sun;
@@ -450,13 +458,82 @@ SunLightDesc parse_sun_light(const JsonObject& json) {
     return sun;
 }
 
-WorldDesc parse_world(const JsonObject& json) {
+/// An angle in degrees from `json`, finite and within [lo, hi].
+float degrees_in(const JsonObject& json, const std::string& key, float fallback, float lo, float hi) {
+    const float value = json.number(key, fallback);
+    if (!(value >= lo && value <= hi)) json.fail(key, fmt::format("must lie in [{}, {}] degrees", lo, hi));
+    return value;
+}
+
+/// A non-negative finite number from `json`.
+float non_negative(const JsonObject& json, const std::string& key, float fallback) {
+    const float value = json.number(key, fallback);
+    if (!(value >= 0 && std::isfinite(value))) json.fail(key, "must be a finite number, not negative");
+    return value;
+}
+
+/// Blender's Sky Texture, Nishita model ("sky": {"model": "nishita", ...}): Blender's parameter
+/// names, angles in degrees as Blender's interface shows them. Its sun disc joins `suns`.
+std::shared_ptr<const EnvironmentMap> parse_sky(const JsonObject& json, float strength, std::vector<SunLightDesc>& suns,
+                                                std::string& description) {
+    const std::string model = json.string("model", "nishita");
+    if (model != "nishita")
+        json.fail("model", fmt::format("unknown sky model \"{}\": steadylight knows \"nishita\" (Blender's default "
+                                       "Sky Texture)",
+                                       model));
+    constexpr float to_radians = pi / 180;
+    NishitaSkyParams sky;
+    sky.sun_elevation = degrees_in(json, "sun_elevation", sky.sun_elevation / to_radians, -90, 90) * to_radians;
+    sky.sun_rotation = degrees_in(json, "sun_rotation", sky.sun_rotation / to_radians, -360, 360) * to_radians;
+    sky.sun_size = degrees_in(json, "sun_size", sky.sun_size / to_radians, 0, SunLightDesc::max_angle_deg) * to_radians;
+    sky.sun_intensity = non_negative(json, "sun_intensity", sky.sun_intensity);
+    sky.sun_disc = json.boolean("sun_disc", sky.sun_disc);
+    sky.altitude = non_negative(json, "altitude", sky.altitude);
+    sky.air_density = non_negative(json, "air_density", sky.air_density);
+    sky.dust_density = non_negative(json, "dust_density", sky.dust_density);
+    sky.ozone_density = non_negative(json, "ozone_density", sky.ozone_density);
+    json.warn_unread();
+
+    if (const std::optional<NishitaSun> sun = nishita_sky_sun(sky)) {
+        // Cycles' disc is darkened towards its limb: its mean radiance is 0.8 times the centre's.
+        const float solid_angle = 2 * pi * (1 - std::cos(sun->angle_radians / 2));
+        suns.push_back({.name = "sky sun",
+                        .direction = -sun->direction,
+                        .irradiance = sun->radiance * (0.8f * solid_angle * strength),
+                        .angle_deg = sun->angle_radians / to_radians});
+    }
+    description = fmt::format(
+        "Nishita sky, sun elevation {:.3g} rotation {:.3g} size {:.3g} degrees, disc {}, "
+        "strength {:.3g}",
+        sky.sun_elevation / to_radians, sky.sun_rotation / to_radians, sky.sun_size / to_radians,
+        sky.sun_disc ? "on (the sun \"sky sun\")" : "off", strength);
+    return std::make_shared<EnvironmentMap>(nishita_sky_image(sky, WorldDesc::sky_image_width), strength, 0.0f);
+}
+
+/// "world": a uniform colour, an equirectangular image or a sky, times a strength.
+WorldDesc parse_world(const JsonObject& json, std::vector<SunLightDesc>& suns, const InputFolder& inputs) {
     WorldDesc world;
-    world.color = json.rgb("color", {0.05f, 0.05f, 0.05f});  // Blender's default World
-    for (int c = 0; c < 3; ++c)
-        if (world.color[c] < 0) json.fail("color", "must not be negative");
-    world.strength = json.number("strength", world.strength);
-    if (!(world.strength >= 0)) json.fail("strength", "must not be negative");
+    if (int(json.has("color")) + int(json.has("image")) + int(json.has("sky")) > 1)
+        json.fail("", "give one of \"color\", \"image\" and \"sky\"");
+    const float strength = json.number("strength", 1);
+    if (!(strength >= 0 && strength <= WorldDesc::max_strength))
+        json.fail("strength", fmt::format("must lie in [0, {:g}]", WorldDesc::max_strength));
+    if (json.has("image")) {
+        const std::string path = resolve_path(json, "image");
+        Image image = load_world_image(path, inputs);
+        const float rotation = degrees_in(json, "rotation_degrees", 0, -360, 360);
+        world.description = fmt::format("image {} ({} x {}), strength {:.3g}, rotation {:.3g} degrees", path,
+                                        image.width, image.height, strength, rotation);
+        world.radiance = std::make_shared<EnvironmentMap>(std::move(image), strength, rotation);
+    } else if (json.has("sky")) {
+        world.radiance = parse_sky(json.object("sky"), strength, suns, world.description);
+    } else {
+        const Rgb color = json.rgb("color", {0.05f, 0.05f, 0.05f});  // Blender's default World
+        for (int c = 0; c < 3; ++c)
+            if (!(color[c] >= 0)) json.fail("color", "must not be negative");
+        json.warn_unread();
+        return WorldDesc::uniform(color * strength);
+    }
     json.warn_unread();
     return world;
 }
@@ -475,6 +552,8 @@ void apply_sun_angles(const JsonObject& root, SceneDesc& desc) {
             angles.fail(name, fmt::format("must lie in [0, {}]", SunLightDesc::max_angle_deg));
     }
 }
+
+}  // namespace
 
 SceneDesc load_scene_desc(const std::string& path, bool confine_inputs) {
     if (is_gltf_file(path)) return load_gltf_scene_desc(path, confine_inputs);
@@ -542,7 +621,7 @@ SceneDesc load_scene_desc(const std::string& path, bool confine_inputs) {
                 desc.point_lights.push_back(parse_point_light(light));
         }
     if (root.has("sun_angles_degrees")) apply_sun_angles(root, desc);
-    if (root.has("world")) desc.world = parse_world(root.object("world"));
+    if (root.has("world")) desc.world = parse_world(root.object("world"), desc.suns, inputs);
     root.warn_unread();
 
     validate(desc);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -12,6 +13,7 @@
 #include "steadylight/base/color.h"
 #include "steadylight/base/input_file.h"
 #include "steadylight/scene/animation.h"
+#include "steadylight/scene/environment_map.h"
 #include "steadylight/scene/texture.h"
 
 namespace steadylight {
@@ -129,13 +131,18 @@ struct SunLightDesc {
     static constexpr float max_angle_deg = 90;
 };
 
-/// Light from far away in every direction (Blender's World): radiance `color` × `strength` from
-/// every direction, in the units of an emitter's radiance (Blender's Background shader).
+/// Light from far away in every direction (Blender's World): its radiance over directions, in
+/// the units of an emitter's radiance (Blender's Background shader): a uniform colour, an
+/// equirectangular image, or Blender's Nishita sky (whose sun disc is one of SceneDesc::suns).
 struct WorldDesc {
-    Rgb color;
-    float strength = 1;
+    std::shared_ptr<const EnvironmentMap> radiance;  // never null
+    std::string description;                         // what it is, for `steadylight info`
 
-    Rgb radiance() const { return color * strength; }
+    /// A world of uniform radiance `radiance` (finite, not negative).
+    static WorldDesc uniform(Rgb radiance);
+
+    static constexpr float max_strength = 1e6f;
+    static constexpr int sky_image_width = 1024;  // the Nishita sky's image: 1024 x 512
 };
 
 /// A pinhole camera looking down its local -z with +y up (the glTF convention).

@@ -465,6 +465,89 @@ TEST_F(SceneFiles, LightOffAtSomeFramesIsFineButZeroAreaIsNot) {
     expect_error(write_scene(flat), {"lamp", "zero area"});
 }
 
+/// An uncompressed Radiance HDR image of `width` x `height` pixels, all of radiance about 1.
+std::string flat_hdr(int width, int height) {
+    std::string bytes =
+        "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
+    for (int i = 0; i < width * height; ++i) bytes += std::string("\x80\x80\x80\x81", 4);  // 0.5 x 2^1
+    return bytes;
+}
+
+TEST_F(SceneFiles, SunsAndTheWorldAreReadWithTheirUnits) {
+    const SceneDesc desc = load_scene_desc(write_scene(floor_quad, R"(, "lights": [
+        {"type": "sun", "name": "noon", "direction": [0, -2, 0], "irradiance": [3, 2, 1], "angle_degrees": 1}],
+        "world": {"color": [0.5, 1, 2], "strength": 2})"));
+    ASSERT_EQ(desc.suns.size(), 1u);
+    EXPECT_EQ(desc.suns[0].name, "noon");
+    EXPECT_EQ(desc.suns[0].direction, (Vec3{0, -1, 0}));
+    EXPECT_EQ(desc.suns[0].irradiance, (Rgb{3, 2, 1}));
+    EXPECT_EQ(desc.suns[0].angle_deg, 1);
+    ASSERT_TRUE(desc.world);
+    EXPECT_EQ(desc.world->radiance->radiance({0, 1, 0}), (Rgb{1, 2, 4}));
+}
+
+TEST_F(SceneFiles, WorldImageIsReadRelativeToTheSceneTimesItsStrength) {
+    write("sky.hdr", flat_hdr(8, 4));
+    const SceneDesc desc = load_scene_desc(
+        write_scene(floor_quad, R"(, "world": {"image": "sky.hdr", "strength": 3, "rotation_degrees": 45})"));
+    ASSERT_TRUE(desc.world);
+    // The pixels read as the middles of their RGBE intervals: 128.5 / 128.
+    EXPECT_FLOAT_EQ(desc.world->radiance->radiance(normalize(Vec3{1, 2, 3})).g, 3 * 128.5f / 128);
+    EXPECT_NE(desc.world->description.find("sky.hdr (8 x 4), strength 3, rotation 45"), std::string::npos)
+        << desc.world->description;
+}
+
+// The sky's sun disc becomes a sun light named "sky sun", where Blender's angles put it, its
+// irradiance scaled by the world's strength; without the disc there is none.
+TEST_F(SceneFiles, NishitaSkyBringsItsSunDiscAsASun) {
+    const auto sky = [&](const std::string& params, float strength) {
+        return load_scene_desc(write_scene(floor_quad, R"(, "world": {"strength": )" + std::to_string(strength) +
+                                                           R"(, "sky": {"model": "nishita", )" + params + "}}"));
+    };
+    const SceneDesc one = sky(R"("sun_elevation": 30, "sun_rotation": 90)", 1);
+    ASSERT_EQ(one.suns.size(), 1u);
+    EXPECT_EQ(one.suns[0].name, "sky sun");
+    const Vec3 travel = one.suns[0].direction, expected = -Vec3{std::cos(pi / 6), std::sin(pi / 6), 0};
+    EXPECT_LT(length(travel - expected), 1e-5f) << travel.x << " " << travel.y << " " << travel.z;
+    EXPECT_NEAR(one.suns[0].angle_deg, 0.545f, 1e-3f);
+    const SceneDesc two = sky(R"("sun_elevation": 30, "sun_rotation": 90)", 2);
+    EXPECT_NEAR(luminance(two.suns[0].irradiance), 2 * luminance(one.suns[0].irradiance),
+                1e-5f * luminance(two.suns[0].irradiance));
+    EXPECT_GT(luminance(one.suns[0].irradiance), 0);
+    EXPECT_TRUE(sky(R"("sun_disc": false)", 1).suns.empty());
+    EXPECT_GT(one.world->radiance->mean_luminance(), 0);
+}
+
+TEST_F(SceneFiles, BadSunsAndWorldsAreErrorsNamingTheValue) {
+    write("sky.hdr", flat_hdr(8, 4));
+    write("square.hdr", flat_hdr(8, 8));
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {R"("lights": [{"type": "sun", "direction": [0, 0, 0], "irradiance": 1}])", {"/lights/0/direction", "zero"}},
+        {R"("lights": [{"type": "sun", "direction": [0, -1, 0], "irradiance": -1}])",
+         {"/lights/0/irradiance", "negative"}},
+        {R"("world": {"color": [1, 1, 1], "strength": -1})", {"/world/strength"}},
+        {R"("world": {"color": [1, -1, 1]})", {"/world/color", "negative"}},
+        {R"("world": {"color": [1, 1, 1], "image": "sky.hdr"})", {"/world", "one of"}},
+        {R"("world": {"image": "nope.exr"})", {"nope.exr", "cannot open"}},
+        {R"("world": {"image": "square.hdr"})", {"square.hdr", "twice"}},
+        {R"("world": {"image": "sky.hdr", "rotation_degrees": 1e30})", {"/world/rotation_degrees"}},
+        {R"("world": {"sky": {"model": "hosek"}})", {"/world/sky/model", "unknown sky model \"hosek\""}},
+        {R"("world": {"sky": {"sun_elevation": 95}})", {"/world/sky/sun_elevation", "[-90, 90]"}},
+        {R"("world": {"sky": {"air_density": -1}})", {"/world/sky/air_density", "negative"}},
+    };
+    for (const auto& [extra, parts] : cases) expect_error(write_scene(floor_quad, ", " + extra), parts);
+}
+
+TEST_F(SceneFiles, ConfinedInputsHoldForTheWorldImage) {
+    write("outside.hdr", flat_hdr(8, 4));
+    fs::create_directories(m_dir / "scene");
+    const std::string scene = write("scene/scene.json", R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+        "world": {"image": "../outside.hdr"}})");
+    EXPECT_NO_THROW(load_scene_desc(scene));
+    const std::string message = testing::input_error_of([&] { load_scene_desc(scene, true); });
+    EXPECT_NE(message.find("lies outside the scene file's folder"), std::string::npos) << message;
+}
+
 TEST_F(SceneFiles, MissingCameraIsAnError) {
     expect_error(write("nocam.json", R"({"objects": []})"), {"nocam.json:/camera", "missing"});
 }

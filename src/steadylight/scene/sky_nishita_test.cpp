@@ -8,15 +8,15 @@
 // angles, black far below the horizon.
 #include "steadylight/scene/sky_nishita.h"
 
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "steadylight/base/input_file.h"
+#include "steadylight/scene/exr_reading.h"
 
 namespace steadylight {
 namespace {
@@ -25,21 +25,10 @@ const std::string reference_dir = std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/
 
 nlohmann::json references() { return nlohmann::json::parse(std::ifstream(reference_dir + "references.json")); }
 
-/// A reference EXR's R, G and B as 32-bit floats. (read_exr lives in output/, above scene/.)
+/// A reference EXR's R, G and B.
 Image read_reference(const std::string& name) {
-    Imf::InputFile file((reference_dir + name).c_str());
-    const Imath::Box2i window = file.header().dataWindow();
-    const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
-    Image image(width, height);
-    char* origin = reinterpret_cast<char*>(image.pixels.data()) -
-                   (size_t(window.min.x) + size_t(window.min.y) * size_t(width)) * sizeof(Rgb);
-    Imf::FrameBuffer frame_buffer;
-    for (const int channel : {0, 1, 2})
-        frame_buffer.insert(std::string(1, "RGB"[channel]), Imf::Slice(Imf::FLOAT, origin + channel * sizeof(float),
-                                                                       sizeof(Rgb), sizeof(Rgb) * size_t(width)));
-    file.setFrameBuffer(frame_buffer);
-    file.readPixels(window.min.y, window.max.y);
-    return image;
+    const std::string path = reference_dir + name;
+    return decode_exr(read_input_file(path), path);
 }
 
 NishitaSkyParams params_from_json(const nlohmann::json& p) {

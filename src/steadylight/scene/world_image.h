@@ -1,5 +1,5 @@
 // World images: the equirectangular picture of the surroundings that a scene's world may name
-// (shading/environment_map.h maps it onto directions as Blender's Environment Texture does), read
+// (scene/environment_map.h maps it onto directions as Blender's Environment Texture does), read
 // from an EXR (RGB or RGBA; any compression OpenEXR reads) or a Radiance HDR file and checked
 // before any light is computed from it.
 //

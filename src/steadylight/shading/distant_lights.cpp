@@ -108,42 +108,53 @@ private:
 
 class WorldLight final : public Light {
 public:
-    WorldLight(const WorldDesc& desc, const BoundingSphere& scene) : m_radiance(desc.radiance()), m_scene(scene) {}
+    WorldLight(const WorldDesc& desc, const BoundingSphere& scene)
+        : m_map(desc.radiance), m_cosine_share(m_map->is_uniform() ? 0.75f : 0.25f), m_scene(scene) {}
 
-    /// Facing a normal: cosine-weighted about it three times in four, else uniform over the
-    /// sphere, so that every direction keeps a chance (light from behind a rough pane).
+    /// Facing a normal: cosine-weighted about it with probability m_cosine_share, else by the
+    /// map (uniform over the sphere for a uniform colour; by luminance times solid angle for an
+    /// image, which finds a small bright sun in it), so that every lit direction keeps a chance
+    /// (light from behind a rough pane).
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3 n) const override {
         LightSample s;
-        if (length2(n) > 0 && u.x < cosine_share) {
-            s.wi = OrthonormalBasis::from_normal(n).to_world(sample_cosine_hemisphere({u.x / cosine_share, u.y}));
+        if (length2(n) > 0 && u.x < m_cosine_share) {
+            s.wi = OrthonormalBasis::from_normal(n).to_world(sample_cosine_hemisphere({u.x / m_cosine_share, u.y}));
         } else {
-            const float rest = length2(n) > 0 ? (u.x - cosine_share) / (1 - cosine_share) : u.x;
-            s.wi = sample_uniform_sphere({std::min(rest, 0x1.fffffep-1f), u.y});
+            const float rest = length2(n) > 0 ? (u.x - m_cosine_share) / (1 - m_cosine_share) : u.x;
+            const std::optional<EnvironmentMap::Sample> sample = m_map->sample({std::min(rest, 0x1.fffffep-1f), u.y});
+            if (!sample) return std::nullopt;
+            s.wi = sample->w;
         }
         s.p = far_point(m_scene, ref, s.wi);
         s.distance = infinity;
-        s.Li = m_radiance;
+        s.Li = m_map->radiance(s.wi);
         s.pdf = pdf_escaped(s.wi, n);
+        if (!(s.pdf > 0)) return std::nullopt;
         return s;
     }
 
     float pdf_li(Vec3, Vec3, Vec3) const override { return 0; }
     float pdf_escaped(Vec3 w, Vec3 n) const override {
-        if (!(length2(n) > 0)) return uniform_sphere_pdf();
-        return cosine_share * std::max(0.0f, dot(w, n)) * inv_pi + (1 - cosine_share) * uniform_sphere_pdf();
+        if (!(length2(n) > 0)) return m_map->pdf(w);
+        return m_cosine_share * std::max(0.0f, dot(w, n)) * inv_pi + (1 - m_cosine_share) * m_map->pdf(w);
     }
-    Rgb escaped_radiance(Vec3) const override { return m_radiance; }
+    Rgb escaped_radiance(Vec3 w) const override { return m_map->radiance(w); }
 
-    /// What enters the scene's sphere: radiance L from every direction through a disc of its
-    /// radius, 4π L A.
-    float power() const override { return luminance(m_radiance) * 4 * pi * disc_area(m_scene); }
-    float importance(Vec3, Vec3) const override { return luminance(m_radiance) * pi; }
+    /// What enters the scene's sphere: the mean radiance L from every direction through a disc
+    /// of its radius, 4π L A.
+    float power() const override { return m_map->mean_luminance() * 4 * pi * disc_area(m_scene); }
+    /// A uniform world gives π L; an image at most all its light from one direction, 4π L.
+    float importance(Vec3, Vec3) const override {
+        return m_map->mean_luminance() * (m_map->is_uniform() ? pi : 4 * pi);
+    }
 
     std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const override {
+        const std::optional<EnvironmentMap::Sample> sample = m_map->sample(u_direction);
+        if (!sample || !(sample->pdf > 0)) return std::nullopt;
         EmissionSample s;
-        s.d = -sample_uniform_sphere(u_direction);
+        s.d = -sample->w;
         s.p = distant_photon_origin(m_scene, s.d, u_position);
-        s.power = m_radiance * (disc_area(m_scene) / uniform_sphere_pdf());
+        s.power = sample->radiance * (disc_area(m_scene) / sample->pdf);
         return s;
     }
 
@@ -155,9 +166,8 @@ public:
     BoundingSphere bounds() const override { return {m_scene.center, infinity}; }
 
 private:
-    static constexpr float cosine_share = 0.75f;
-
-    Rgb m_radiance;
+    std::shared_ptr<const EnvironmentMap> m_map;
+    float m_cosine_share;
     BoundingSphere m_scene;
 };
 

@@ -1,6 +1,6 @@
 // Lights from far away: a sun gives its irradiance to a surface facing it, whether exactly
 // parallel or spread over a cone, and a ray into its cone sees radiance that integrates to that
-// irradiance; the world gives ∫ L cos dω = π L whatever its sampling; pdfs agree with samples;
+// irradiance; the world gives ∫ L cos dω (π L when uniform) whatever its sampling; pdfs agree with samples;
 // photons carry the light that crosses the disc covering the scene and start outside it.
 #include <gtest/gtest.h>
 
@@ -91,7 +91,7 @@ TEST(DistantLights, ARayIntoTheSunsConeSeesRadianceThatAddsUpToItsIrradiance) {
 }
 
 TEST(DistantLights, TheWorldGivesPiTimesItsRadianceWithOrWithoutANormal) {
-    const DistantLit lit({}, WorldDesc{.color = {0.5f, 1, 2}, .strength = 2});
+    const DistantLit lit({}, WorldDesc::uniform(Rgb{0.5f, 1, 2} * 2));
     const double expected = pi * luminance({1, 2, 4});
     for (const Vec3 n : {Vec3{0, 1, 0}, normalize(Vec3{1, 1, 1})})
         for (const bool with_normal : {true, false})
@@ -99,13 +99,75 @@ TEST(DistantLights, TheWorldGivesPiTimesItsRadianceWithOrWithoutANormal) {
     EXPECT_EQ(luminance(lit.lights.escaped_radiance(normalize(Vec3{0.3f, -1, 0.2f}))), luminance({1, 2, 4}));
 }
 
+/// A world image: a dim blue sky over a darker ground, with a small bright sun 40 degrees up.
+WorldDesc image_world() {
+    Image image(64, 32);
+    for (int j = 0; j < 32; ++j)
+        for (int i = 0; i < 64; ++i) image.at(i, j) = j < 16 ? Rgb{0.2f, 0.3f, 0.6f} : Rgb{0.1f, 0.08f, 0.05f};
+    image.at(40, 7) = Rgb{4000, 3800, 3500};
+    return {.radiance = std::make_shared<EnvironmentMap>(std::move(image), 1.5f, 20.0f), .description = "test"};
+}
+
+/// ∫ L(w) max(0, w·n) dω over the sphere by a fine grid in (θ, φ), luminance.
+double integrated_irradiance(const EnvironmentMap& map, Vec3 n) {
+    const int rows = 2048, columns = 4096;
+    double sum = 0;
+    for (int j = 0; j < rows; ++j) {
+        const double theta = pi * (j + 0.5) / rows;
+        for (int i = 0; i < columns; ++i) {
+            const double phi = 2 * pi * (i + 0.5) / columns;
+            const Vec3 w{float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)),
+                         float(std::sin(theta) * std::sin(phi))};
+            sum += luminance(map.radiance(w)) * std::max(0.0f, dot(w, n)) * std::sin(theta);
+        }
+    }
+    return sum * (pi / rows) * (2 * pi / columns);
+}
+
+// An image with a small bright sun: next-event samples, with or without the normal, give the
+// irradiance the image's radiance integrates to, and escaped rays see the image.
+TEST(DistantLights, AnImageWorldGivesTheIrradianceItsRadianceIntegratesTo) {
+    const WorldDesc world = image_world();
+    const DistantLit lit({}, world);
+    for (const Vec3 n : {Vec3{0, 1, 0}, normalize(Vec3{1, 1, 1}), normalize(Vec3{-1, 0.2f, 0})}) {
+        const double expected = integrated_irradiance(*world.radiance, n);
+        for (const bool with_normal : {true, false})
+            EXPECT_NEAR(irradiance(lit.lights, n, 400000, with_normal), expected, 0.015 * expected)
+                << n.x << " " << n.y << " " << n.z << " " << with_normal;
+    }
+    const Vec3 w = normalize(Vec3{0.3f, -1, 0.2f});
+    EXPECT_EQ(lit.lights.escaped_radiance(w), world.radiance->radiance(w));
+}
+
+// Photons of an image world carry, on average, its mean radiance over the sphere times 4π and
+// the disc's area, and leave in directions the image sends light from.
+TEST(DistantLights, PhotonsOfAnImageWorldCarryItsMeanRadiance) {
+    const WorldDesc world = image_world();
+    const DistantLit lit({}, world);
+    const BoundingSphere& bounds = lit.scene.bounds();
+    Pcg32 rng(5);
+    double power = 0;
+    const int n = 400000;
+    for (int i = 0; i < n; ++i) {
+        const std::optional<EmissionSample> e =
+            lit.lights.sample_emission(rng.next_float(), rng.next_vec2(), rng.next_vec2());
+        ASSERT_TRUE(e);
+        power += luminance(e->power);
+        EXPECT_GT(length(e->p - bounds.center), bounds.radius);
+    }
+    const double expected = world.radiance->mean_luminance() * 4 * pi * pi * bounds.radius * bounds.radius;
+    EXPECT_NEAR(power / n, expected, 0.01 * expected);
+}
+
 TEST(DistantLights, SampledDirectionsAreWeighedAsEscapedRaysAre) {
     // Light sampling and a BSDF-sampled ray that escapes weigh each light by the same pdfs: a
     // direction with a BSDF pdf equal to its light pdf gets half of the light's radiance.
     const Vec3 n = normalize(Vec3{0.2f, 1, -0.1f});
-    for (const bool world : {false, true}) {
+    for (const int world : {0, 1, 2}) {
         const DistantLit lit(world ? std::vector<SunLightDesc>{} : std::vector{sun(2.0f)},
-                             world ? std::optional(WorldDesc{.color = {1, 1, 1}}) : std::nullopt);
+                             world == 1   ? std::optional(WorldDesc::uniform({1, 1, 1}))
+                             : world == 2 ? std::optional(image_world())
+                                          : std::nullopt);
         Pcg32 rng(8);
         for (int i = 0; i < 200; ++i) {
             const std::optional<LightSample> s = lit.lights.sample({0, 0, 0}, rng.next_float(), rng.next_vec2(), n);

@@ -44,7 +44,7 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_obj
     m_first_distant = m_lights.size();
     for (const SunLightDesc& sun : scene.desc().suns)
         if (!is_black(sun.irradiance)) m_lights.push_back(make_sun_light(sun, scene.bounds()));
-    if (scene.desc().world && !is_black(scene.desc().world->radiance()))
+    if (scene.desc().world && !scene.desc().world->radiance->is_black())
         m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds()));
 
     // Choose lights in proportion to power; uniformly if none has any.

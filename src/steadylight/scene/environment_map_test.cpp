@@ -1,7 +1,7 @@
 // The world's light (environment_map.h): white furnaces, the image mapped as Blender's
 // Environment Texture maps it, samples that follow their pdf and find a bright pixel as often as
 // its share of the light, and a hash that sees every input.
-#include "steadylight/shading/environment_map.h"
+#include "steadylight/scene/environment_map.h"
 
 #include <gtest/gtest.h>
 

@@ -54,6 +54,10 @@ public:
 
     /// Mean luminance of the radiance over the sphere (1/4π ∫ L dω), for choosing among lights.
     float mean_luminance() const { return m_mean_luminance; }
+    /// No direction sends any light.
+    bool is_black() const { return m_black; }
+    /// A uniform colour (no image).
+    bool is_uniform() const { return m_image.pixels.empty(); }
     /// Hash of everything that determines the radiance (pixels, size, strength, rotation, colour),
     /// for the static cache's staleness check.
     uint64_t hash() const;

@@ -1,4 +1,4 @@
-#include "steadylight/shading/environment_map.h"
+#include "steadylight/scene/environment_map.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ double pixel_solid_angle(int j, int width, int height) {
 }  // namespace
 
 EnvironmentMap::EnvironmentMap(Rgb radiance)
-    : m_radiance(radiance), m_mean_luminance(luminance(radiance)), m_black(is_black(radiance)) {
+    : m_radiance(radiance), m_mean_luminance(luminance(radiance)), m_black(steadylight::is_black(radiance)) {
     SL_CHECK(is_finite(radiance) && radiance.r >= 0 && radiance.g >= 0 && radiance.b >= 0);
 }
 
@@ -55,7 +55,7 @@ EnvironmentMap::EnvironmentMap(Image image, float strength, float rotation_degre
             const Rgb& p = m_image.at(i, j);
             SL_CHECK(is_finite(p) && p.r >= 0 && p.g >= 0 && p.b >= 0);
             row += luminance(p);
-            m_black = m_black && is_black(p);
+            m_black = m_black && steadylight::is_black(p);
         }
         weighted += row * pixel_solid_angle(j, width, height);
     }
