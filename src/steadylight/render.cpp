@@ -20,6 +20,7 @@
 #include "steadylight/output/image_writer.h"
 #include "steadylight/output/video.h"
 #include "steadylight/passes/frame_pass.h"
+#include "steadylight/photons/distant_photon_share.h"
 #include "steadylight/run/console.h"
 #include "steadylight/run/frame_claim.h"
 #include "steadylight/run/frame_manifest.h"
@@ -31,6 +32,13 @@
 namespace steadylight {
 namespace {
 
+/// True when the scene has a sun or a world that sends light.
+bool has_distant_light(const SceneDesc& desc) {
+    return std::any_of(desc.suns.begin(), desc.suns.end(),
+                       [](const SunLightDesc& sun) { return !is_black(sun.irradiance); }) ||
+           (desc.world && !desc.world->radiance->is_black());
+}
+
 /// True when something in the scene emits light: an emitting object, a point or spot light, a
 /// sun or the world.
 bool has_light(const SceneDesc& desc) {
@@ -40,9 +48,7 @@ bool has_light(const SceneDesc& desc) {
                            return light.intensity_track ? is_ever_lit(*light.intensity_track)
                                                         : !is_black(light.intensity);
                        }) ||
-           std::any_of(desc.suns.begin(), desc.suns.end(),
-                       [](const SunLightDesc& sun) { return !is_black(sun.irradiance); }) ||
-           (desc.world && !desc.world->radiance->is_black());
+           has_distant_light(desc);
 }
 
 Scene load_scene(const RenderSettings& settings) {
@@ -185,9 +191,11 @@ std::vector<int> frames_in(const std::vector<int>& frames, const Segment& segmen
 /// One frame: the scene placed there and the method's frame pass. A value that is not finite
 /// leaves as 0, counted in the frame's statistics and reported (output/frame_layers.h).
 RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
-                           const StaticSolution* solution, int frame) {
+                           const StaticSolution* solution, const CameraSeenSides* seen, int frame) {
     const PlacedFrame placed(scene, tracer, bsdfs, frame);
     RenderedFrame rendered = method_info(settings.method).render_frame(placed.context(), solution, settings);
+    if (rendered.stats && seen)
+        rendered.stats->distant_photons_inside = distant_photons_inside(placed.context(), *seen).value_or(-1);
     const NonFiniteValues non_finite = replace_non_finite(rendered.beauty, rendered.layers);
     if (non_finite.count > 0)
         spdlog::warn(
@@ -279,6 +287,10 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
     const std::optional<int> interrupt_after = test_interrupt_after_frames();
     FrameWriter writer([&summary](int frame) { summary.frames_written.push_back(frame); });
     const bool needs_solution = method_info(settings.method).has_static_pass || reuses_photon_paths(settings);
+    // Photon methods say how many photons of light from far away reach what the camera sees.
+    const std::optional<CameraSeenSides> seen = settings.method != Method::path && has_distant_light(scene.desc())
+                                                    ? std::optional<CameraSeenSides>(std::in_place, scene, tracer)
+                                                    : std::nullopt;
     // The static pass of the segment whose frames render now: run (or loaded) with its first
     // frame rendered here, freed when the next segment's is made.
     std::optional<StaticSolution> solution;
@@ -293,7 +305,8 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
         }
         if (interrupt_after == rendered_here) std::raise(SIGINT);
         const Stopwatch time;
-        RenderedFrame rendered = render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr, frame);
+        RenderedFrame rendered = render_frame(settings, scene, tracer, bsdfs, solution ? &*solution : nullptr,
+                                              seen ? &*seen : nullptr, frame);
         write_in_background(writer, settings, scene, frame, std::move(rendered), std::move(claim), key,
                             time.elapsed_s());
         ++rendered_here;
@@ -441,6 +454,10 @@ std::string describe_scene(const std::string& scene_file, bool confine_inputs) {
     } else {
         text += "world: none (the background is black)\n";
     }
+    for (const PortalDesc& portal : desc.portals)
+        text += fmt::format("portal: corner ({:.3g}, {:.3g}, {:.3g}), {:.3g} m², facing ({:.3f}, {:.3f}, {:.3f})\n",
+                            portal.corner.x, portal.corner.y, portal.corner.z, portal.area(), portal.inward_normal().x,
+                            portal.inward_normal().y, portal.inward_normal().z);
     text += fmt::format("materials: {}\n", desc.materials.size());
     return text;
 }

@@ -90,7 +90,7 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         if (!hit) {
             // The lights from far away, weighted against sampling them at the previous vertex.
             L += beta * (specular_bounce ? context.lights.escaped_radiance(ray.d)
-                                         : context.lights.escaped_radiance(ray.d, previous_n, bsdf_pdf));
+                                         : context.lights.escaped_radiance(previous_p, ray.d, previous_n, bsdf_pdf));
             break;
         }
         ++counts.vertices;

@@ -94,6 +94,7 @@ void to_json(nlohmann::json& json, const FrameStats& s) {
     };
     for_each_json_field(s, write);
     for_each_later_json_field(s, write);
+    if (s.distant_photons_inside >= 0) json["distant_photons_inside"] = s.distant_photons_inside;
 }
 
 void from_json(const nlohmann::json& json, FrameStats& s) {
@@ -111,6 +112,7 @@ void from_json(const nlohmann::json& json, FrameStats& s) {
         const nlohmann::json::json_pointer at(pointer);
         value = json.contains(at) ? json.at(at).get<Value>() : Value{};
     });
+    s.distant_photons_inside = json.value("distant_photons_inside", -1.0);
 }
 
 std::string summarize(const FrameStats& s) {
@@ -119,6 +121,8 @@ std::string summarize(const FrameStats& s) {
     const bool paths = s.camera_samples > 0;
     std::string text = has_photon_mapping_figures(s) || !paths ? summarize_photon_mapping(s) : "";
     if (paths) text += (text.empty() ? "" : " | ") + summarize_paths(s);
+    if (s.distant_photons_inside >= 0)
+        text += fmt::format(" | distant photons inside {:.1f}%", 100 * s.distant_photons_inside);
     if (s.non_finite_values > 0) text += fmt::format(" | {} non-finite values written as 0", s.non_finite_values);
     return text;
 }

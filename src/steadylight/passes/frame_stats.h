@@ -43,11 +43,14 @@ struct FrameStats {
     double shading_s = 0;         // shading pass: direct light, cache look-ups, specular
     double caustics_s = 0;        // caustic estimates (inside the shading pass, summed over threads)
     double total_s = 0;
-    long camera_samples = 0;     // path: pixels x samples per pixel
-    long path_rays = 0;          // path: rays traced, closest-hit and shadow rays
-    long path_vertices = 0;      // path: surface hits along the paths (per camera sample: path length)
-    long non_finite_values = 0;  // channel values of the frame's layers that were NaN or infinite,
-                                 // written as 0 (a defect: the tests expect none)
+    long camera_samples = 0;             // path: pixels x samples per pixel
+    long path_rays = 0;                  // path: rays traced, closest-hit and shadow rays
+    long path_vertices = 0;              // path: surface hits along the paths (per camera sample: path length)
+    double distant_photons_inside = -1;  // photon methods: the share of the photon paths of light from far
+                                         // away whose first hit the camera sees (photons/distant_photon_share.h);
+                                         // -1: none (left out of the file)
+    long non_finite_values = 0;          // channel values of the frame's layers that were NaN or infinite,
+                                         // written as 0 (a defect: the tests expect none)
 };
 
 void to_json(nlohmann::json& json, const FrameStats& stats);

@@ -74,6 +74,8 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
     }
     for (const SunLightDesc& sun : scene.desc().suns) h.add(sun.direction), h.add(sun.irradiance), h.add(sun.angle_deg);
     if (const std::optional<WorldDesc>& world = scene.desc().world) h.add(world->radiance->hash());
+    for (const PortalDesc& portal : scene.desc().portals)
+        h.add(portal.corner), h.add(portal.edge_u), h.add(portal.edge_v);
     // Light from far away aims its photons at the animation's bounds.
     if (!scene.desc().suns.empty() || scene.desc().world) h.add(scene.bounds().center), h.add(scene.bounds().radius);
     for (int frame = segment.first; frame <= segment.last; ++frame) {

@@ -538,6 +538,17 @@ WorldDesc parse_world(const JsonObject& json, std::vector<SunLightDesc>& suns, c
     return world;
 }
 
+PortalDesc parse_portal(const JsonObject& json) {
+    const PortalDesc portal{
+        .corner = json.vec3("corner"), .edge_u = json.vec3("edge_u"), .edge_v = json.vec3("edge_v")};
+    if (!(portal.area() > 0) || !std::isfinite(portal.area()))
+        json.fail("", "a portal needs edges that span an area (edge_u x edge_v is zero)");
+    if (std::abs(dot(portal.edge_u, portal.edge_v)) > 1e-3f * length(portal.edge_u) * length(portal.edge_v))
+        json.fail("", "a portal is a rectangle: edge_u and edge_v must be at right angles");
+    json.warn_unread();
+    return portal;
+}
+
 /// A glTF's suns take the angles a wrapper JSON gives them by light node name
 /// ("sun_angles_degrees": {"Sun": 1.5}): glTF carries no angle.
 void apply_sun_angles(const JsonObject& root, SceneDesc& desc) {
@@ -622,6 +633,8 @@ SceneDesc load_scene_desc(const std::string& path, bool confine_inputs) {
         }
     if (root.has("sun_angles_degrees")) apply_sun_angles(root, desc);
     if (root.has("world")) desc.world = parse_world(root.object("world"), desc.suns, inputs);
+    if (root.has("portals"))
+        for (const JsonObject& portal : root.objects("portals")) desc.portals.push_back(parse_portal(portal));
     root.warn_unread();
 
     validate(desc);

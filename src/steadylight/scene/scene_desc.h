@@ -145,6 +145,17 @@ struct WorldDesc {
     static constexpr int sky_image_width = 1024;  // the Nishita sky's image: 1024 x 512
 };
 
+/// A window of an interior lit from outside, as Cycles' light portals mark them: the quad
+/// corner + s edge_u + t edge_v (s, t in [0, 1]), edge_u × edge_v facing into the room. Light
+/// from far away (suns and the world) aims its photons through the portals, and the world's
+/// direct light at points inside samples them too.
+struct PortalDesc {
+    Vec3 corner, edge_u, edge_v;
+
+    Vec3 inward_normal() const { return normalize(cross(edge_u, edge_v)); }
+    float area() const { return length(cross(edge_u, edge_v)); }
+};
+
 /// A pinhole camera looking down its local -z with +y up (the glTF convention).
 struct CameraDesc {
     std::vector<AnimatedTrs> placement;  // world_from_camera
@@ -170,6 +181,7 @@ struct SceneDesc {
     std::vector<PointLightDesc> point_lights;
     std::vector<SunLightDesc> suns;
     std::optional<WorldDesc> world;
+    std::vector<PortalDesc> portals;
     int frame_count = 1;
     float fps = 24;
     FpsSource fps_source = FpsSource::default_rate;

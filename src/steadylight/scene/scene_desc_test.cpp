@@ -476,7 +476,8 @@ std::string flat_hdr(int width, int height) {
 TEST_F(SceneFiles, SunsAndTheWorldAreReadWithTheirUnits) {
     const SceneDesc desc = load_scene_desc(write_scene(floor_quad, R"(, "lights": [
         {"type": "sun", "name": "noon", "direction": [0, -2, 0], "irradiance": [3, 2, 1], "angle_degrees": 1}],
-        "world": {"color": [0.5, 1, 2], "strength": 2})"));
+        "world": {"color": [0.5, 1, 2], "strength": 2},
+        "portals": [{"corner": [1, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 1, 0]}])"));
     ASSERT_EQ(desc.suns.size(), 1u);
     EXPECT_EQ(desc.suns[0].name, "noon");
     EXPECT_EQ(desc.suns[0].direction, (Vec3{0, -1, 0}));
@@ -484,6 +485,9 @@ TEST_F(SceneFiles, SunsAndTheWorldAreReadWithTheirUnits) {
     EXPECT_EQ(desc.suns[0].angle_deg, 1);
     ASSERT_TRUE(desc.world);
     EXPECT_EQ(desc.world->radiance->radiance({0, 1, 0}), (Rgb{1, 2, 4}));
+    ASSERT_EQ(desc.portals.size(), 1u);
+    EXPECT_EQ(desc.portals[0].area(), 2);
+    EXPECT_EQ(desc.portals[0].inward_normal(), (Vec3{-1, 0, 0}));
 }
 
 TEST_F(SceneFiles, WorldImageIsReadRelativeToTheSceneTimesItsStrength) {
@@ -534,6 +538,9 @@ TEST_F(SceneFiles, BadSunsAndWorldsAreErrorsNamingTheValue) {
         {R"("world": {"sky": {"model": "hosek"}})", {"/world/sky/model", "unknown sky model \"hosek\""}},
         {R"("world": {"sky": {"sun_elevation": 95}})", {"/world/sky/sun_elevation", "[-90, 90]"}},
         {R"("world": {"sky": {"air_density": -1}})", {"/world/sky/air_density", "negative"}},
+        {R"("portals": [{"corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [2, 0, 0]}])", {"/portals/0", "area"}},
+        {R"("portals": [{"corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [1, 1, 0]}])",
+         {"/portals/0", "right angles"}},
     };
     for (const auto& [extra, parts] : cases) expect_error(write_scene(floor_quad, ", " + extra), parts);
 }

@@ -3,11 +3,18 @@
 // points: a LightSample's distance is infinite and its shadow ray open-ended (shadow_ray()). A
 // ray that leaves the scene sees them (escaped_radiance()). Their photons start on a disc as
 // large as the scene's animation bounds (Scene::bounds()), just outside it, facing the light.
+//
+// With portals (PortalDesc: the windows of an interior), photons are aimed through them instead:
+// a point on a portal, a direction from outside through it, the photon started outside the scene
+// on the line back from that point; the light that enters by no portal is then not traced as
+// photons (as Cycles' portals, they must mark every opening). The world's direct light at a point
+// inside samples the portals by solid angle besides its other strategies.
 #include <algorithm>
 #include <cmath>
 
 #include "steadylight/base/sampling.h"
 #include "steadylight/shading/light.h"
+#include "steadylight/shading/spherical_rectangle.h"
 
 namespace steadylight {
 namespace {
@@ -34,15 +41,127 @@ Vec3 far_point(const BoundingSphere& scene, Vec3 ref, Vec3 wi) {
     return ref + wi * (2 * (std::max(scene.radius, 1e-3f) + length(ref - scene.center)));
 }
 
+/// The portals as light from far away uses them: photons aimed through them, and the world's
+/// direct light sampled through them.
+class Portals {
+public:
+    explicit Portals(const std::vector<PortalDesc>& portals) {
+        for (const PortalDesc& portal : portals) {
+            m_rectangles.push_back({portal.corner, portal.edge_u, portal.edge_v});
+            m_normals.push_back(portal.inward_normal());
+            m_areas.push_back(portal.area());
+            m_total_area += portal.area();
+        }
+    }
+
+    bool empty() const { return m_rectangles.empty(); }
+
+    /// A photon's way in for travel direction `d` (unit): a point on a portal chosen in
+    /// proportion to its area facing d, and the flux factor Σ A_i cos⁺(d, n_i) (irradiance
+    /// across d times it is the power entering); nothing when no portal faces d.
+    struct Entry {
+        Vec3 p;
+        float projected_area = 0;
+    };
+    std::optional<Entry> entry_for(Vec3 d, Vec2 u) const {
+        float total = 0;
+        for (size_t i = 0; i < m_rectangles.size(); ++i) total += projected_area(i, d);
+        if (!(total > 0)) return std::nullopt;
+        float target = u.x * total;
+        size_t i = 0;
+        for (; i + 1 < m_rectangles.size() && target >= projected_area(i, d); ++i) target -= projected_area(i, d);
+        const float s = std::clamp(target / projected_area(i, d), 0.0f, 0x1.fffffep-1f);
+        return Entry{point_on(i, {s, u.y}), total};
+    }
+
+    /// A point uniformly by area over all portals, and the inward normal there.
+    std::pair<Vec3, Vec3> uniform_point(Vec2 u) const {
+        float target = u.x * m_total_area;
+        size_t i = 0;
+        for (; i + 1 < m_rectangles.size() && target >= m_areas[i]; ++i) target -= m_areas[i];
+        const float s = std::clamp(target / m_areas[i], 0.0f, 0x1.fffffep-1f);
+        return {point_on(i, {s, u.y}), m_normals[i]};
+    }
+    float total_area() const { return m_total_area; }
+
+    /// Whether `ref` sees some portal from inside (from the side its normal faces).
+    bool seen_from_inside(Vec3 ref) const {
+        for (size_t i = 0; i < m_rectangles.size(); ++i)
+            if (faces(i, ref)) return true;
+        return false;
+    }
+    /// A direction from `ref` through a portal that faces it (chosen uniformly among those),
+    /// uniform in the portal's solid angle.
+    std::optional<Vec3> sample_direction(Vec3 ref, Vec2 u) const {
+        const int facing = facing_count(ref);
+        if (facing == 0) return std::nullopt;
+        int k = std::min(int(u.x * float(facing)), facing - 1);
+        const float rest = u.x * float(facing) - float(k);
+        for (size_t i = 0; i < m_rectangles.size(); ++i) {
+            if (!faces(i, ref) || k-- > 0) continue;
+            const SphericalRectangle seen(m_rectangles[i], ref);
+            if (!(seen.solid_angle() > min_solid_angle)) return std::nullopt;
+            return normalize(seen.sample({std::min(rest, 0x1.fffffep-1f), u.y}) - ref);
+        }
+        return std::nullopt;
+    }
+    /// The solid-angle density sample_direction() gives `w` at `ref`.
+    float pdf(Vec3 ref, Vec3 w) const {
+        const int facing = facing_count(ref);
+        float pdf = 0;
+        for (size_t i = 0; i < m_rectangles.size(); ++i) {
+            if (!faces(i, ref) || !crosses(i, ref, w)) continue;
+            const float solid_angle = SphericalRectangle(m_rectangles[i], ref).solid_angle();
+            if (solid_angle > min_solid_angle) pdf += 1 / (float(facing) * solid_angle);
+        }
+        return pdf;
+    }
+
+private:
+    static constexpr float min_solid_angle = 1e-7f;
+
+    float projected_area(size_t i, Vec3 d) const { return m_areas[i] * std::max(0.0f, dot(d, m_normals[i])); }
+    Vec3 point_on(size_t i, Vec2 u) const {
+        return m_rectangles[i].corner + m_rectangles[i].edge_u * u.x + m_rectangles[i].edge_v * u.y;
+    }
+    bool faces(size_t i, Vec3 ref) const { return dot(ref - m_rectangles[i].corner, m_normals[i]) > 0; }
+    int facing_count(Vec3 ref) const {
+        int n = 0;
+        for (size_t i = 0; i < m_rectangles.size(); ++i) n += faces(i, ref);
+        return n;
+    }
+    /// Whether the ray from `ref` along `w` passes through portal i.
+    bool crosses(size_t i, Vec3 ref, Vec3 w) const {
+        const Rectangle& r = m_rectangles[i];
+        const float along = dot(w, m_normals[i]);
+        if (!(along < 0)) return false;  // from inside, a way out goes against the inward normal
+        const Vec3 q = ref + w * (dot(r.corner - ref, m_normals[i]) / along) - r.corner;
+        const float s = dot(q, r.edge_u) / length2(r.edge_u), t = dot(q, r.edge_v) / length2(r.edge_v);
+        return s >= 0 && s <= 1 && t >= 0 && t <= 1;
+    }
+
+    std::vector<Rectangle> m_rectangles;
+    std::vector<Vec3> m_normals;
+    std::vector<float> m_areas;
+    float m_total_area = 0;
+};
+
+/// Where a photon travelling `d` through point `p` of a portal starts: outside the scene's
+/// sphere, on the line back from p.
+Vec3 origin_outside(const BoundingSphere& scene, Vec3 p, Vec3 d) {
+    return p - d * (length(p - scene.center) + std::max(scene.radius, 1e-3f) * 1.01f);
+}
+
 class SunLight final : public Light {
 public:
-    SunLight(const SunLightDesc& desc, const BoundingSphere& scene)
+    SunLight(const SunLightDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals)
         : m_to_sun(-normalize(desc.direction)),
           m_irradiance(desc.irradiance),
           m_cos_max(std::cos(desc.angle_deg * pi / 360)),
           m_delta(desc.angle_deg <= 0 || m_cos_max >= 1),
           m_radiance(m_delta ? Rgb{} : desc.irradiance * uniform_cone_pdf(m_cos_max)),
-          m_scene(scene) {}
+          m_scene(scene),
+          m_portals(portals) {}
 
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3) const override {
         LightSample s;
@@ -56,7 +175,7 @@ public:
     }
 
     float pdf_li(Vec3, Vec3, Vec3) const override { return 0; }
-    float pdf_escaped(Vec3 w, Vec3) const override { return inside_cone(w) ? uniform_cone_pdf(m_cos_max) : 0; }
+    float pdf_escaped(Vec3, Vec3 w, Vec3) const override { return inside_cone(w) ? uniform_cone_pdf(m_cos_max) : 0; }
     Rgb escaped_radiance(Vec3 w) const override { return inside_cone(w) ? m_radiance : Rgb{}; }
 
     float power() const override { return luminance(m_irradiance) * disc_area(m_scene); }
@@ -76,6 +195,14 @@ public:
             m_delta ? m_to_sun
                     : OrthonormalBasis::from_normal(m_to_sun).to_world(sample_uniform_cone(u_direction, m_cos_max));
         s.d = -to_light;
+        if (!m_portals.empty()) {
+            // Through a portal: the irradiance times the portals' area facing the light. A
+            // direction no portal faces lets no light in: a photon without power.
+            const std::optional<Portals::Entry> entry = m_portals.entry_for(s.d, u_position);
+            s.p = entry ? origin_outside(m_scene, entry->p, s.d) : m_scene.center;
+            s.power = entry ? m_irradiance * entry->projected_area : Rgb{};
+            return s;
+        }
         s.p = distant_photon_origin(m_scene, s.d, u_position);
         // L / (pdf_direction pdf_position) = (E / Ω) Ω A: the irradiance over the disc.
         s.power = m_irradiance * disc_area(m_scene);
@@ -104,23 +231,34 @@ private:
     bool m_delta;
     Rgb m_radiance;  // over the disc, when it has one
     BoundingSphere m_scene;
+    Portals m_portals;
 };
 
 class WorldLight final : public Light {
 public:
-    WorldLight(const WorldDesc& desc, const BoundingSphere& scene)
-        : m_map(desc.radiance), m_cosine_share(m_map->is_uniform() ? 0.75f : 0.25f), m_scene(scene) {}
+    WorldLight(const WorldDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals)
+        : m_map(desc.radiance),
+          m_cosine_share(m_map->is_uniform() ? 0.75f : 0.25f),
+          m_scene(scene),
+          m_portals(portals) {}
 
     /// Facing a normal: cosine-weighted about it with probability m_cosine_share, else by the
     /// map (uniform over the sphere for a uniform colour; by luminance times solid angle for an
     /// image, which finds a small bright sun in it), so that every lit direction keeps a chance
-    /// (light from behind a rough pane).
+    /// (light from behind a rough pane). Inside a room with portals, half of the samples go
+    /// through a portal instead.
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3 n) const override {
+        const Shares shares = shares_at(ref, n);
         LightSample s;
-        if (length2(n) > 0 && u.x < m_cosine_share) {
-            s.wi = OrthonormalBasis::from_normal(n).to_world(sample_cosine_hemisphere({u.x / m_cosine_share, u.y}));
+        if (u.x < shares.portal) {
+            const std::optional<Vec3> w = m_portals.sample_direction(ref, {u.x / shares.portal, u.y});
+            if (!w) return std::nullopt;
+            s.wi = *w;
+        } else if (u.x < shares.portal + shares.cosine) {
+            s.wi = OrthonormalBasis::from_normal(n).to_world(
+                sample_cosine_hemisphere({(u.x - shares.portal) / shares.cosine, u.y}));
         } else {
-            const float rest = length2(n) > 0 ? (u.x - m_cosine_share) / (1 - m_cosine_share) : u.x;
+            const float rest = (u.x - shares.portal - shares.cosine) / (1 - shares.portal - shares.cosine);
             const std::optional<EnvironmentMap::Sample> sample = m_map->sample({std::min(rest, 0x1.fffffep-1f), u.y});
             if (!sample) return std::nullopt;
             s.wi = sample->w;
@@ -128,27 +266,34 @@ public:
         s.p = far_point(m_scene, ref, s.wi);
         s.distance = infinity;
         s.Li = m_map->radiance(s.wi);
-        s.pdf = pdf_escaped(s.wi, n);
+        s.pdf = pdf_escaped(ref, s.wi, n);
         if (!(s.pdf > 0)) return std::nullopt;
         return s;
     }
 
     float pdf_li(Vec3, Vec3, Vec3) const override { return 0; }
-    float pdf_escaped(Vec3 w, Vec3 n) const override {
-        if (!(length2(n) > 0)) return m_map->pdf(w);
-        return m_cosine_share * std::max(0.0f, dot(w, n)) * inv_pi + (1 - m_cosine_share) * m_map->pdf(w);
+    float pdf_escaped(Vec3 ref, Vec3 w, Vec3 n) const override {
+        const Shares shares = shares_at(ref, n);
+        float pdf = (1 - shares.portal - shares.cosine) * m_map->pdf(w);
+        if (shares.cosine > 0) pdf += shares.cosine * std::max(0.0f, dot(w, n)) * inv_pi;
+        if (shares.portal > 0) pdf += shares.portal * m_portals.pdf(ref, w);
+        return pdf;
     }
     Rgb escaped_radiance(Vec3 w) const override { return m_map->radiance(w); }
 
     /// What enters the scene's sphere: the mean radiance L from every direction through a disc
-    /// of its radius, 4π L A.
-    float power() const override { return m_map->mean_luminance() * 4 * pi * disc_area(m_scene); }
+    /// of its radius, 4π L A; with portals, what enters through them, at most π L A each.
+    float power() const override {
+        return m_map->mean_luminance() *
+               (m_portals.empty() ? 4 * pi * disc_area(m_scene) : pi * m_portals.total_area());
+    }
     /// A uniform world gives π L; an image at most all its light from one direction, 4π L.
     float importance(Vec3, Vec3) const override {
         return m_map->mean_luminance() * (m_map->is_uniform() ? pi : 4 * pi);
     }
 
     std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const override {
+        if (!m_portals.empty()) return sample_emission_through_portals(u_position, u_direction);
         const std::optional<EnvironmentMap::Sample> sample = m_map->sample(u_direction);
         if (!sample || !(sample->pdf > 0)) return std::nullopt;
         EmissionSample s;
@@ -166,19 +311,57 @@ public:
     BoundingSphere bounds() const override { return {m_scene.center, infinity}; }
 
 private:
+    /// How sample_li divides its samples at `ref` (normal `n`): through portals, cosine-weighted,
+    /// and the rest by the map.
+    struct Shares {
+        float portal = 0, cosine = 0;
+    };
+    Shares shares_at(Vec3 ref, Vec3 n) const {
+        // Through a window the cosine adds nothing the portals do not: portals and the map
+        // (which finds a bright sun in an image) share the samples.
+        if (m_portals.seen_from_inside(ref)) return {m_map->is_uniform() ? 0.75f : 0.5f, 0.0f};
+        return {0.0f, length2(n) > 0 ? m_cosine_share : 0.0f};
+    }
+
+    /// A point uniformly on the portals, a direction into the room through it cosine-weighted
+    /// about the portal's normal half of the time, else by the map (the other way: a photon
+    /// without power).
+    std::optional<EmissionSample> sample_emission_through_portals(Vec2 u_position, Vec2 u_direction) const {
+        const auto [p, portal_n] = m_portals.uniform_point(u_position);
+        EmissionSample s;
+        if (u_direction.x < 0.5f) {
+            s.d = OrthonormalBasis::from_normal(portal_n).to_world(
+                sample_cosine_hemisphere({u_direction.x * 2, u_direction.y}));
+        } else {
+            const std::optional<EnvironmentMap::Sample> sample =
+                m_map->sample({std::min((u_direction.x - 0.5f) * 2, 0x1.fffffep-1f), u_direction.y});
+            if (!sample) return std::nullopt;
+            s.d = -sample->w;
+        }
+        const float cos_in = dot(s.d, portal_n);
+        const float pdf = 0.5f * std::max(0.0f, cos_in) * inv_pi + 0.5f * m_map->pdf(-s.d);
+        s.p = origin_outside(m_scene, p, s.d);
+        // L cos / (pdf_position pdf_direction), pdf_position = 1 / total area.
+        s.power = cos_in > 0 && pdf > 0 ? m_map->radiance(-s.d) * (cos_in * m_portals.total_area() / pdf) : Rgb{};
+        return s;
+    }
+
     std::shared_ptr<const EnvironmentMap> m_map;
     float m_cosine_share;
     BoundingSphere m_scene;
+    Portals m_portals;
 };
 
 }  // namespace
 
-std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene) {
-    return std::make_unique<SunLight>(desc, scene);
+std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene,
+                                      const std::vector<PortalDesc>& portals) {
+    return std::make_unique<SunLight>(desc, scene, portals);
 }
 
-std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene) {
-    return std::make_unique<WorldLight>(desc, scene);
+std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene,
+                                        const std::vector<PortalDesc>& portals) {
+    return std::make_unique<WorldLight>(desc, scene, portals);
 }
 
 }  // namespace steadylight

@@ -159,6 +159,96 @@ TEST(DistantLights, PhotonsOfAnImageWorldCarryItsMeanRadiance) {
     EXPECT_NEAR(power / n, expected, 0.01 * expected);
 }
 
+/// A window: 2 x 1 in the plane x = 1, facing -x (into the room at x < 1), y in [0.5, 1.5].
+const PortalDesc window{.corner = {1, 0.5f, -1}, .edge_u = {0, 0, 2}, .edge_v = {0, 1, 0}};
+
+/// Irradiance at `ref` (normal `n`) from the directions that pass through `window`, from
+/// next-event samples of `lights`, and their relative variance per sample.
+std::pair<double, double> irradiance_through_window(const LightSet& lights, Vec3 ref, Vec3 n, int samples) {
+    Pcg32 rng(11);
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < samples; ++i) {
+        const std::optional<LightSample> s = lights.sample(ref, rng.next_float(), rng.next_vec2(), n);
+        if (!s) continue;
+        const Vec3 q = ref + s->wi * ((window.corner.x - ref.x) / s->wi.x);
+        const bool through = s->wi.x > 0 && q.y >= 0.5f && q.y <= 1.5f && q.z >= -1 && q.z <= 1;
+        const double value = through ? luminance(s->Li) * std::max(0.0f, dot(s->wi, n)) / s->pdf : 0;
+        sum += value, sum2 += value * value;
+    }
+    const double mean = sum / samples;
+    return {mean, (sum2 / samples - mean * mean) / (mean * mean)};
+}
+
+// The world's direct light through a window: with the window as a portal, samples give the
+// same irradiance (the integral of the image through the window, by a fine grid), with a
+// fraction of the variance; the irradiance from every direction is unchanged.
+TEST(DistantLights, PortalsSampleTheWorldThroughTheWindowWithoutBias) {
+    const WorldDesc world = image_world();
+    const Vec3 ref{0, 1, 0.2f}, n = normalize(Vec3{1, 0.2f, 0});
+    // The grid integral restricted to the window.
+    double expected = 0;
+    const int rows = 1024, columns = 2048;
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            const float u = (float(i) + 0.5f) / float(columns), v = (float(j) + 0.5f) / float(rows);
+            const Vec3 q{1, 0.5f + v, -1 + 2 * u};
+            const Vec3 d = q - ref;
+            const float r2 = length2(d);
+            const Vec3 w = d / std::sqrt(r2);
+            // dω = dA cos_window / r², cos_window = w.x.
+            expected += luminance(world.radiance->radiance(w)) * std::max(0.0f, dot(w, n)) * w.x / r2 *
+                        (2.0 / (rows * columns));
+        }
+    SceneDesc with = DistantLit::describe({}, world);
+    with.portals = {window};
+    const Scene portal_scene(with);
+    const LightSet portal_lights(portal_scene, portal_scene.evaluate(0));
+    const DistantLit plain({}, world);
+    const auto [through_portal, variance_portal] = irradiance_through_window(portal_lights, ref, n, 200000);
+    const auto [through_plain, variance_plain] = irradiance_through_window(plain.lights, ref, n, 200000);
+    EXPECT_NEAR(through_portal, expected, 0.01 * expected);
+    EXPECT_NEAR(through_plain, expected, 0.03 * expected);
+    EXPECT_LT(variance_portal, 0.25 * variance_plain) << variance_portal << " " << variance_plain;
+    EXPECT_NEAR(irradiance(portal_lights, n, 200000, true), integrated_irradiance(*world.radiance, n),
+                0.02 * integrated_irradiance(*world.radiance, n));
+}
+
+// Photons through portals carry what enters by the window: a sun's irradiance times the
+// window's area facing it; a uniform world's π L A. Each starts outside the scene and passes
+// through the window.
+TEST(DistantLights, PhotonsThroughPortalsCarryTheLightThatEntersByThem) {
+    const Vec3 travel = normalize(Vec3{-1, -0.5f, 0.3f});
+    for (const bool world : {false, true}) {
+        SceneDesc desc = DistantLit::describe(world ? std::vector<SunLightDesc>{}
+                                                    : std::vector<SunLightDesc>{{.name = "sun",
+                                                                                 .direction = travel,
+                                                                                 .irradiance = {3, 2, 1},
+                                                                                 .angle_deg = 0}},
+                                              world ? std::optional(WorldDesc::uniform({1, 1, 1})) : std::nullopt);
+        desc.portals = {window};  // photons enter along -x
+        ASSERT_LT(desc.portals[0].inward_normal().x, -0.99f);
+        const Scene scene(desc);
+        const LightSet lights(scene, scene.evaluate(0));
+        Pcg32 rng(6);
+        double power = 0;
+        const int n = 200000;
+        for (int i = 0; i < n; ++i) {
+            const std::optional<EmissionSample> e =
+                lights.sample_emission(rng.next_float(), rng.next_vec2(), rng.next_vec2());
+            ASSERT_TRUE(e);
+            EXPECT_TRUE(e->from_far_away);
+            if (is_black(e->power)) continue;
+            power += luminance(e->power);
+            EXPECT_GT(length(e->p - scene.bounds().center), scene.bounds().radius);
+            const Vec3 q = e->p + e->d * ((1 - e->p.x) / e->d.x);
+            EXPECT_TRUE(q.y >= 0.5f - 1e-4f && q.y <= 1.5f + 1e-4f && q.z >= -1 - 1e-4f && q.z <= 1 + 1e-4f)
+                << q.x << " " << q.y << " " << q.z;
+        }
+        const double expected = world ? pi * 2 : luminance({3, 2, 1}) * 2 * std::max(0.0f, -travel.x);
+        EXPECT_NEAR(power / n, expected, (world ? 0.01 : 1e-4) * expected) << world;
+    }
+}
+
 TEST(DistantLights, SampledDirectionsAreWeighedAsEscapedRaysAre) {
     // Light sampling and a BSDF-sampled ray that escapes weigh each light by the same pdfs: a
     // direction with a BSDF pdf equal to its light pdf gets half of the light's radiance.
@@ -172,7 +262,7 @@ TEST(DistantLights, SampledDirectionsAreWeighedAsEscapedRaysAre) {
         for (int i = 0; i < 200; ++i) {
             const std::optional<LightSample> s = lit.lights.sample({0, 0, 0}, rng.next_float(), rng.next_vec2(), n);
             ASSERT_TRUE(s);
-            EXPECT_NEAR(luminance(lit.lights.escaped_radiance(s->wi, n, s->pdf)), 0.5f * luminance(s->Li),
+            EXPECT_NEAR(luminance(lit.lights.escaped_radiance({0, 0, 0}, s->wi, n, s->pdf)), 0.5f * luminance(s->Li),
                         1e-3f * luminance(s->Li));
         }
     }

@@ -31,9 +31,10 @@ struct LightSample {
 /// spreads the light's power over the N photons emitted.
 struct EmissionSample {
     Vec3 p;
-    Vec3 n;     // the emitting surface's normal on the side the photon leaves (zero for point lights)
-    Vec3 d;     // unit direction
-    Rgb power;  // Le cos / (pdf_position pdf_direction), divided by the light's selection probability
+    Vec3 n;                      // the emitting surface's normal on the side the photon leaves (zero for point lights)
+    Vec3 d;                      // unit direction
+    Rgb power;                   // Le cos / (pdf_position pdf_direction), divided by the light's selection probability
+    bool from_far_away = false;  // from a sun or the world (LightSet::sample_emission sets it)
 };
 
 /// Where a photon leaves a light before its direction is chosen (for photons aimed at targets).
@@ -55,8 +56,8 @@ public:
     virtual float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const = 0;
     /// What a ray leaving the scene along unit `w` sees of this light (lights from far away)...
     virtual Rgb escaped_radiance(Vec3 /*w*/) const { return {}; }
-    /// ...and the solid-angle pdf sample_li gives `w` for a point of normal `n`.
-    virtual float pdf_escaped(Vec3 /*w*/, Vec3 /*n*/) const { return 0; }
+    /// ...and the solid-angle pdf sample_li gives `w` for a point `ref` of normal `n`.
+    virtual float pdf_escaped(Vec3 /*ref*/, Vec3 /*w*/, Vec3 /*n*/) const { return 0; }
     /// Total emitted power (luminance of W), used to choose lights.
     virtual float power() const = 0;
     /// \brief An upper estimate of the luminance of irradiance the light could give a surface
@@ -80,9 +81,12 @@ public:
 std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& frame, int object);
 /// A point or spot light with radiant intensity `intensity` (the lamp's at the frame).
 std::unique_ptr<Light> make_point_light(const PointLightDesc& desc, Rgb intensity);
-/// A sun, and the world, whose photons cover `scene` (Scene::bounds()).
-std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene);
-std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene);
+/// A sun, and the world, whose photons cover `scene` (Scene::bounds()), or enter through
+/// `portals` when there are any.
+std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene,
+                                      const std::vector<PortalDesc>& portals);
+std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene,
+                                        const std::vector<PortalDesc>& portals);
 
 /// The shadow ray from surface point `p` (geometric normal `ng`) towards a sampled light: to its
 /// point, or open-ended towards a light from far away.
@@ -125,10 +129,10 @@ public:
     float pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const;
     /// What a ray leaving the scene along unit `w` sees: the lights from far away.
     Rgb escaped_radiance(Vec3 w) const;
-    /// escaped_radiance() for a ray sampled with solid-angle pdf `bsdf_pdf` at a point of normal
-    /// `n`: each light's part weighted by the power heuristic against sample() choosing that
-    /// light and sampling `w` from it.
-    Rgb escaped_radiance(Vec3 w, Vec3 n, float bsdf_pdf) const;
+    /// escaped_radiance() for a ray sampled with solid-angle pdf `bsdf_pdf` at point `ref` of
+    /// normal `n`: each light's part weighted by the power heuristic against sample() choosing
+    /// that light and sampling `w` from it.
+    Rgb escaped_radiance(Vec3 ref, Vec3 w, Vec3 n, float bsdf_pdf) const;
 
 private:
     std::vector<std::unique_ptr<Light>> m_lights;

@@ -43,9 +43,9 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_obj
             m_lights.push_back(make_point_light(scene.desc().point_lights[i], frame.point_light_intensity[i]));
     m_first_distant = m_lights.size();
     for (const SunLightDesc& sun : scene.desc().suns)
-        if (!is_black(sun.irradiance)) m_lights.push_back(make_sun_light(sun, scene.bounds()));
+        if (!is_black(sun.irradiance)) m_lights.push_back(make_sun_light(sun, scene.bounds(), scene.desc().portals));
     if (scene.desc().world && !scene.desc().world->radiance->is_black())
-        m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds()));
+        m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds(), scene.desc().portals));
 
     // Choose lights in proportion to power; uniformly if none has any.
     float total = 0;
@@ -68,7 +68,10 @@ std::optional<EmissionSample> LightSet::sample_emission(float u_select, Vec2 u_p
     const auto [i, p_select] = choose(u_select);
     if (p_select <= 0) return std::nullopt;
     std::optional<EmissionSample> s = m_lights[i]->sample_emission(u_position, u_direction);
-    if (s) s->power = s->power / p_select;
+    if (s) {
+        s->power = s->power / p_select;
+        s->from_far_away = i >= m_first_distant;
+    }
     return s;
 }
 
@@ -147,12 +150,12 @@ Rgb LightSet::escaped_radiance(Vec3 w) const {
     return L;
 }
 
-Rgb LightSet::escaped_radiance(Vec3 w, Vec3 n, float bsdf_pdf) const {
+Rgb LightSet::escaped_radiance(Vec3 ref, Vec3 w, Vec3 n, float bsdf_pdf) const {
     Rgb L;
     for (size_t i = m_first_distant; i < m_lights.size(); ++i) {
         const Rgb Le = m_lights[i]->escaped_radiance(w);
         if (is_black(Le)) continue;
-        const float light_pdf = (m_cdf[i] - (i ? m_cdf[i - 1] : 0)) * m_lights[i]->pdf_escaped(w, n);
+        const float light_pdf = (m_cdf[i] - (i ? m_cdf[i - 1] : 0)) * m_lights[i]->pdf_escaped(ref, w, n);
         L += Le * power_heuristic(bsdf_pdf, light_pdf);
     }
     return L;
