@@ -32,8 +32,6 @@ struct BoundingSphere {
 inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& from, const BoundingSphere& to,
                               float slack) {
     if (s.empty() || from.empty() || to.empty()) return false;
-    // A sphere without bounds (light from every direction) meets every segment.
-    if (std::isinf(from.radius) || std::isinf(to.radius)) return true;
     // First the capsule of the larger radius about the centres' segment, which holds the hull:
     // most spheres are clear of it, and it costs one distance.
     const Vec3 along = to.center - from.center;

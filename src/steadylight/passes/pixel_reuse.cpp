@@ -28,6 +28,41 @@ void StaticFrameMaker::add_look_up(size_t pixel, int sample, int entry, Vec3 p, 
     m_out.look_ups[pixel].n[size_t(entry)] = n;
 }
 
+void PixelTrace::add_distant_direction(Vec3 w) {
+    for (int axis = 0; axis < 3; ++axis) {
+        const float scaled = w[axis] * 127;
+        to_distant_lo[size_t(axis)] =
+            std::min(to_distant_lo[size_t(axis)], int8_t(std::clamp(std::floor(scaled), -127.0f, 127.0f)));
+        to_distant_hi[size_t(axis)] =
+            std::max(to_distant_hi[size_t(axis)], int8_t(std::clamp(std::ceil(scaled), -127.0f, 127.0f)));
+    }
+}
+
+// The box's cone: about the direction of its centre, out to its farthest corner. A ray from a
+// point p of `from` that meets s is the ray from from's centre along the same direction, moved
+// by at most from's radius: it meets s widened by that radius, which from the centre lies within
+// its angular radius of the direction towards it.
+bool may_meet_rays(const BoundingSphere& s, const BoundingSphere& from, std::array<int8_t, 3> lo,
+                   std::array<int8_t, 3> hi) {
+    if (s.empty() || from.empty()) return false;
+    const Vec3 box_lo{float(lo[0]), float(lo[1]), float(lo[2])}, box_hi{float(hi[0]), float(hi[1]), float(hi[2])};
+    const Vec3 to_s = s.center - from.center;
+    const float distance = length(to_s), reach = s.radius + from.radius;
+    if (distance <= reach) return true;
+    // A box holding the origin (or touching it) leaves every direction open.
+    if (box_lo.x <= 0 && box_hi.x >= 0 && box_lo.y <= 0 && box_hi.y >= 0 && box_lo.z <= 0 && box_hi.z >= 0) return true;
+    const Vec3 axis = normalize((box_lo + box_hi) * 0.5f);
+    float cone = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 c{corner & 1 ? box_hi.x : box_lo.x, corner & 2 ? box_hi.y : box_lo.y,
+                     corner & 4 ? box_hi.z : box_lo.z};
+        cone = std::max(cone, std::acos(std::clamp(dot(axis, normalize(c)), -1.0f, 1.0f)));
+    }
+    const float angle_to_s = std::acos(std::clamp(dot(axis, to_s / distance), -1.0f, 1.0f));
+    // A margin for rounding: a thousandth of a radian.
+    return angle_to_s <= cone + std::asin(reach / distance) + 1e-3f;
+}
+
 PixelSource::Shading PixelReuse::begin(int x, int y, size_t pixel, PixelSums& sums) {
     const PixelWork work = m_work[pixel];
     if (work == PixelWork::redo) return Shading::all;
@@ -102,6 +137,10 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
                 if (chains && may_meet_segments(object, points, points, slack)) changed |= camera_term;
                 for (const BoundingSphere& light : changes.lights)
                     if (may_meet_segments(object, points, light, slack)) changed |= direct_term;
+                if (trace.reached_distant_light() &&
+                    may_meet_rays(object, BoundingSphere{points.center, points.radius + slack}, trace.to_distant_lo,
+                                  trace.to_distant_hi))
+                    changed |= direct_term;
             }
             if (changes.indirect[size_t(i)] || (trace.flags & (PixelRecorder::gather | PixelRecorder::coat)) ||
                 (chains && (changes.records_changed || changes.caustics_changed)))

@@ -35,8 +35,14 @@ struct PixelTrace {
     Vec3 lo{infinity, infinity, infinity}, hi{-infinity, -infinity, -infinity};  // box of every surface point hit
     uint8_t flags = 0;                                                           // PixelRecorder::Flag bits
     uint8_t surface_rays = 0;  // camera rays whose first hit is diffuse (they fill the method's layers)
+    // The box of the unit directions of the shadow rays towards lights from far away that reached
+    // them (nothing static in the way), in 127ths rounded outwards: only a dynamic object in one
+    // of those directions from the points can change the pixel's light from far away.
+    std::array<int8_t, 3> to_distant_lo{127, 127, 127}, to_distant_hi{-127, -127, -127};
 
     void add_point(Vec3 p) { lo = min(lo, p), hi = max(hi, p); }
+    void add_distant_direction(Vec3 w);
+    bool reached_distant_light() const { return to_distant_lo[0] <= to_distant_hi[0]; }
 };
 
 /// Where a pixel's camera rays looked up their indirect light (PixelMemo's entries), so that a
@@ -87,6 +93,7 @@ public:
     PixelRecorder* recorder() override { return this; }
 
     void add_point(size_t pixel, Vec3 p) override { m_out.traces[pixel].add_point(p); }
+    void add_distant_direction(size_t pixel, Vec3 w) override { m_out.traces[pixel].add_distant_direction(w); }
     void add_flags(size_t pixel, uint8_t flags) override { m_out.traces[pixel].flags |= flags; }
     void add_surface_ray(size_t pixel) override { ++m_out.traces[pixel].surface_rays; }
     void add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) override;
@@ -149,6 +156,12 @@ struct PixelPlan {
 };
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes);
+
+/// Whether sphere `s` may meet a ray from a point of sphere `from` along a unit direction in the
+/// box [lo, hi] of directions in 127ths (PixelTrace::to_distant_lo, hi): conservative, never a
+/// "no" for a ray that does.
+bool may_meet_rays(const BoundingSphere& s, const BoundingSphere& from, std::array<int8_t, 3> lo,
+                   std::array<int8_t, 3> hi);
 
 /// How closely mark_sphere_on_screen() follows a sphere: its screen box (cheap: for many small
 /// spheres), or within the box the pixels whose centre's ray comes within the sphere's angular

@@ -49,6 +49,38 @@ TEST(BoundingSphere, SegmentsBetweenTwoSpheresThroughAThirdAreNeverMissed) {
     EXPECT_GT(no, 1500);
 }
 
+/// Whether the ray from `o` along unit `d` meets sphere `s` (the test's own oracle).
+bool ray_meets(const BoundingSphere& s, Vec3 o, Vec3 d) {
+    const float along = std::max(0.0f, dot(s.center - o, d));
+    return length(s.center - (o + d * along)) <= s.radius;
+}
+
+TEST(PixelReuse, RaysTowardsLightsFromFarAwayThroughASphereAreNeverMissed) {
+    Pcg32 rng(9);
+    int no = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const BoundingSphere from = random_sphere(rng, 0.5f), object = random_sphere(rng, 0.4f);
+        // Directions within a random cone, recorded as a pixel's shadow rays are.
+        const Vec3 axis = sample_uniform_sphere(rng.next_vec2());
+        const float cos_max = 1 - rng.next_float() * rng.next_float() * 0.5f;
+        PixelTrace trace;
+        std::vector<Vec3> directions;
+        for (int k = 0; k < 8; ++k) {
+            directions.push_back(
+                OrthonormalBasis::from_normal(axis).to_world(sample_uniform_cone(rng.next_vec2(), cos_max)));
+            trace.add_distant_direction(directions.back());
+        }
+        const bool answer = may_meet_rays(object, from, trace.to_distant_lo, trace.to_distant_hi);
+        no += !answer;
+        if (answer) continue;
+        for (const Vec3 d : directions)
+            for (int start = 0; start < 16; ++start)
+                ASSERT_FALSE(ray_meets(object, random_in_ball(rng, from), d)) << "trial " << trial;
+    }
+    // Not an answer that is always yes.
+    EXPECT_GT(no, 1000);
+}
+
 TEST(PixelReuse, ScreenMarksHoldEveryPixelWhoseRaysPassThroughTheSphere) {
     Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
     scene.set_resolution(64, 48);
@@ -161,7 +193,8 @@ TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, PixelReuseOnScene,
-                         ::testing::Values("ball", "table", "corridor", "glass_move", "mirror_room", "blender_glass"),
+                         ::testing::Values("ball", "table", "corridor", "glass_move", "mirror_room", "blender_glass",
+                                           "daylit_room"),
                          [](const auto& param_info) { return param_info.param; });
 
 TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {

@@ -81,7 +81,9 @@ private:
     Components shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint& surface, int depth, Emission emission,
                          const PixelSample& pixel, const LightStrata& strata, Pcg32& rng) const;
     Rgb direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
-                     const LightStrata& strata) const;
+                     const LightStrata& strata, const PixelSample& pixel) const;
+    /// Notes for pixel reuse a shadow ray towards a light from far away that reached it.
+    void record_distant(const PixelSample& pixel, const LightSample& light) const;
     Rgb light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
                          const LightStrata& strata, const PixelSample& pixel) const;
     bool is_flat_mirror(int object) const;
@@ -98,8 +100,13 @@ private:
     mutable std::atomic<long> m_caustic_ns = 0;
 };
 
+void Shader::record_distant(const PixelSample& pixel, const LightSample& light) const {
+    if (pixel.recorder && std::isinf(light.distance))
+        pixel.recorder->add_distant_direction(pixel.pixel_index, light.wi);
+}
+
 Rgb Shader::direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
-                         const LightStrata& strata) const {
+                         const LightStrata& strata, const PixelSample& pixel) const {
     Rgb sum;
     for (int s = 0; s < m_settings.direct_samples; ++s) {
         // Stratified: the choice of light takes the stratified dimension and passes its
@@ -110,6 +117,7 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, 
         const Vec3 wi = basis.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
         if (is_black(f) || m_context.tracer.occluded(shadow_ray(*light, sp.p, sp.ng), m_visibility)) continue;
+        record_distant(pixel, *light);
         sum += f * light->Li * (std::abs(wi.z) / light->pdf);
     }
     return sum / float(m_settings.direct_samples);
@@ -145,6 +153,7 @@ Rgb Shader::light_in_mirrors(const SurfacePoint& sp, const OrthonormalBasis& bas
                 sample_bounce(*bsdf_at(m_context, on_mirror), on_mirror, towards_image, {}, 0, TransportMode::radiance);
             if (!reflected || m_context.tracer.occluded(shadow_ray(*light, on_mirror.p, on_mirror.ng), m_visibility))
                 continue;
+            record_distant(pixel, *light);
             sum += f * reflected->sample.weight * light->Li * (std::abs(wi.z) / light->pdf);
         }
     }
@@ -160,7 +169,7 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const OrthonormalBasis& basis
                            const PixelSample& pixel, const LightStrata& strata, Components& c) const {
     // Textures multiply here, after the cache's interpolation: they are never blurred by it.
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
-    if (!pixel.skip_direct) c.direct += direct_light(sp, basis, bsdf, wo, strata);
+    if (!pixel.skip_direct) c.direct += direct_light(sp, basis, bsdf, wo, strata, pixel);
     c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
     if (depth == 0 && pixel.recorder) record_look_up(pixel, bsdf, albedo_over_pi);
     // A diffuse point reads the caustic map, an empty one too: a frame's may not be empty.
@@ -249,7 +258,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     // So do the lights' images in flat mirrors.
     if (!bsdf.is_delta() && !pixel.skip_direct) {
         const OrthonormalBasis own = OrthonormalBasis::from_normal(surface.nm);
-        c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata);
+        c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata, pixel);
         c.direct += light_in_mirrors(sp, own, bsdf, own.to_local(-ray.d), strata, pixel);
     }
     if (depth >= m_settings.max_specular_depth) return c;

@@ -93,6 +93,8 @@ public:
     /// A surface point the pixel's rays hit (or, in a mirror, the image of a light they sampled).
     virtual void add_point(size_t pixel, Vec3 p) = 0;
     virtual void add_flags(size_t pixel, uint8_t flags) = 0;
+    /// A shadow ray towards a light from far away, along unit `w`, that nothing static stopped.
+    virtual void add_distant_direction(size_t pixel, Vec3 w) = 0;
     /// A camera ray whose first hit is diffuse (it fills the method's layers).
     virtual void add_surface_ray(size_t pixel) = 0;
     /// Camera ray `sample`'s indirect light is the look-up at (p, n), entry `entry` of its

@@ -213,14 +213,8 @@ public:
     EmissionPoint sample_emission_point(Vec2) const override { return {}; }
     Rgb emitted_intensity(const EmissionPoint&, Vec3) const override { return {}; }
 
-    /// Every shadow ray towards the sun lies in the hull of a scene point and this sphere: far
-    /// beyond the scene towards the sun, wide enough for the cone's spread over that distance.
-    BoundingSphere bounds() const override {
-        const float radius = std::max(m_scene.radius, 1e-3f);
-        const float distance = 1000 * radius;
-        const float tan_max = std::sqrt(std::max(0.0f, 1 - m_cos_max * m_cos_max)) / m_cos_max;
-        return {m_scene.center + m_to_sun * distance, radius + (distance + 2 * radius) * tan_max};
-    }
+    /// No place to bound: pixel reuse follows the shadow rays' directions (Light::bounds()).
+    BoundingSphere bounds() const override { return {}; }
 
 private:
     bool inside_cone(Vec3 w) const { return !m_delta && dot(w, m_to_sun) >= m_cos_max; }
@@ -306,9 +300,8 @@ public:
     EmissionPoint sample_emission_point(Vec2) const override { return {}; }
     Rgb emitted_intensity(const EmissionPoint&, Vec3) const override { return {}; }
 
-    /// Light from every direction: a sphere without bounds, which meets every segment
-    /// (may_meet_segments).
-    BoundingSphere bounds() const override { return {m_scene.center, infinity}; }
+    /// No place to bound: pixel reuse follows the shadow rays' directions (Light::bounds()).
+    BoundingSphere bounds() const override { return {}; }
 
 private:
     /// How sample_li divides its samples at `ref` (normal `n`): through portals, cosine-weighted,

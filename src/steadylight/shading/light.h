@@ -71,8 +71,9 @@ public:
     /// \brief Radiant intensity leaving `at` towards unit `d`, per unit of `at`'s pdf measure:
     /// Le |cos| on an emitting side of an area light (zero on the other), a lamp's intensity.
     virtual Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const = 0;
-    /// A sphere holding every point the light emits from (a point light's has radius 0), or for
-    /// a light from far away one that every shadow ray towards it crosses beyond the scene.
+    /// A sphere holding every point the light emits from (a point light's has radius 0). Lights
+    /// from far away have none (an empty sphere): their shadow rays have no end, and pixel reuse
+    /// follows the directions a pixel's shadow rays took towards them instead (PixelTrace).
     virtual BoundingSphere bounds() const = 0;
 };
 
@@ -123,7 +124,7 @@ public:
     Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const {
         return m_lights[at.light]->emitted_intensity(at, d);
     }
-    /// Every light's bounds(), in the set's order.
+    /// Every light's bounds(), in the set's order (empty for lights from far away).
     std::vector<BoundingSphere> bounds() const;
     /// The pdf sample() gives for reaching point p (normal n) on emissive object `object`.
     float pdf_emitter(int object, Vec3 ref, Vec3 p, Vec3 n) const;
