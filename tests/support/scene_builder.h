@@ -60,6 +60,7 @@ inline SceneDesc absorbing_ball_before_light(Rgb attenuation_color) {
 /// fills the left half of the image.
 inline SceneDesc two_rooms_one_moving_ball() {
     SceneDesc desc = make_empty_scene({4, 1.5f, -6}, {4, 1.5f, 0}, 48, 24, 40);
+    desc.name = "two_rooms";
     desc.frame_count = 2;
     const int white = add_material(desc, {.reflectance = {0.7f, 0.7f, 0.7f}});
     add_object(desc, make_quad({0, 0, 0}, {0, 0, 4}, {8, 0, 0}), white);  // floor
@@ -82,6 +83,7 @@ inline SceneDesc two_rooms_one_moving_ball() {
 /// around them.
 inline SceneDesc balls_before_the_world() {
     SceneDesc desc = make_empty_scene({0, 0, 5}, {0, 0, 0}, 32, 24, 40);
+    desc.name = "balls";
     desc.frame_count = 2;
     desc.fps = 1;  // frame 1 at 1 s, where the track ends
     const int grey = add_material(desc, {.reflectance = {0.6f, 0.6f, 0.6f}});
