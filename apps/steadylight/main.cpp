@@ -49,7 +49,8 @@ struct RawOptions {
     std::string exr_type = "half", view_transform = "standard";
 };
 
-/// The options that shape the written files: EXR pixel type, PNG view transform, video.
+/// The options that shape the written files: EXR pixel type, PNG view transform, transparent
+/// background, video.
 void add_output_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
     command->add_option("--exr-type", raw.exr_type, "EXR channels: half (16-bit) or float (32-bit)")
         ->capture_default_str()
@@ -63,6 +64,9 @@ void add_output_options(CLI::App* command, RenderSettings& settings, RawOptions&
         ->capture_default_str()
         ->check(CLI::IsMember({"standard", "filmic"}));
     command->add_flag("!--no-dither", settings.output.view.dither, "PNG: round without the fixed dither");
+    command->add_flag("--transparent-background", settings.output.transparent_background,
+                      "Leave the world out of what the camera sees directly: EXR and PNG with alpha (the share of "
+                      "camera rays that meet a surface; the world seen through glass and mirrors stays)");
     command->add_option("--video", settings.output.video_file,
                         "Encode the frames' PNGs as an H.264 MP4 with ffmpeg after rendering");
 }

@@ -60,6 +60,7 @@ Scene load_scene(const RenderSettings& settings) {
             "intensity): every frame renders black",
             settings.scene_file);
     scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
+    scene.set_transparent_background(settings.output.transparent_background);
     return scene;
 }
 
@@ -111,9 +112,10 @@ StaticSolution segment_solution(const RenderSettings& settings, const Scene& sce
 
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
     const OutputSettings& output = settings.output;
+    const Image* alpha = rendered.alpha ? &*rendered.alpha : nullptr;
     write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
-              frame_exr_layers(rendered.beauty, rendered.layers), output.exr_type);
-    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view);
+              frame_exr_layers(rendered.beauty, rendered.layers, alpha), output.exr_type);
+    write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view, alpha);
     if (settings.aov_pngs)
         for (const NamedImage& layer : rendered.layers)
             write_png(frame_file_name(settings.out_dir, scene.name(), frame, layer.name + ".png"), layer.image,
@@ -132,7 +134,8 @@ void write_video(const RenderSettings& settings, const Scene& scene, const std::
                   .first_frame = first,
                   .frame_count = last - first + 1,
                   .fps = scene.desc().fps,
-                  .output = settings.output.video_file});
+                  .output = settings.output.video_file,
+                  .alpha = settings.output.transparent_background});
     spdlog::info("video: {} frames at {} fps written to {}", last - first + 1, scene.desc().fps,
                  settings.output.video_file);
 }

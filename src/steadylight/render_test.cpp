@@ -1,16 +1,24 @@
-// render_animation() across runs: resume, --overwrite, other settings, and Ctrl-C.
+// render_animation() across runs: resume, --overwrite, other settings, and Ctrl-C; a transparent
+// background in the written files.
 #include "steadylight/render.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <fmt/format.h>
 
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
 #include "steadylight/output/frame_names.h"
+#include "steadylight/output/image_writer.h"
+#include "steadylight/run/settings_file.h"
+#include "steadylight/scene/image_decoding.h"
+#include "support/input_error.h"
 
 namespace steadylight {
 namespace {
@@ -74,6 +82,65 @@ TEST_F(RenderResume, InterruptDropsTheFrameInProgress) {
     EXPECT_EQ(stopped.frames_left, (std::vector<int>{0, 1}));
     EXPECT_FALSE(fs::exists(frame_file_name(m_settings.out_dir, "ball", 0, "exr")));
     EXPECT_EQ(render_animation(m_settings).frames_written, (std::vector<int>{0, 1}));
+}
+
+/// The bytes of the file at `path`.
+std::vector<unsigned char> file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// --transparent-background end to end: alpha in the EXR (A and beauty.A) and the PNG (RGBA), the
+// world left out where alpha is 0, and the option kept in the settings file like the others.
+TEST_F(RenderResume, TransparentBackgroundWritesAlphaAndIsASetting) {
+    fs::create_directories(m_settings.out_dir);
+    m_settings.scene_file = m_settings.out_dir + "/world_ball.json";
+    std::ofstream(m_settings.scene_file) << R"({"name": "world_ball",
+        "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov_y": 40},
+        "materials": {"grey": {"type": "lambert", "reflectance": [0.5, 0.5, 0.5]}},
+        "objects": [{"name": "ball", "shape": {"type": "sphere", "radius": 0.8}, "material": "grey"}],
+        "world": {"color": [0.2, 0.3, 0.5]}})";
+    m_settings.frames = parse_frame_selection("0");
+    m_settings.path.samples_per_pixel = 4;
+    m_settings.output.transparent_background = true;
+    render_animation(m_settings);
+
+    const std::string exr = frame_file_name(m_settings.out_dir, "world_ball", 0, "exr");
+    const std::vector<float> alpha = read_exr_channel(exr, "A");
+    EXPECT_EQ(read_exr_channel(exr, "beauty.A"), alpha);
+    const Image beauty = read_exr(exr);
+    ASSERT_EQ(alpha.size(), 16u * 12);
+    EXPECT_EQ(alpha[6 * 16 + 8], 1);  // the ball
+    int empty = 0, edges = 0;
+    for (size_t i = 0; i < alpha.size(); ++i) {
+        empty += alpha[i] == 0, edges += alpha[i] > 0 && alpha[i] < 1;
+        if (alpha[i] == 0) {
+            EXPECT_EQ(beauty.pixels[i], Rgb{}) << i;
+        }
+    }
+    EXPECT_GT(empty, 16 * 12 / 2);
+    EXPECT_GT(edges, 4);
+    const std::vector<unsigned char> png = file_bytes(frame_file_name(m_settings.out_dir, "world_ball", 0, "png"));
+    EXPECT_EQ(png.at(25), 6);  // IHDR colour type: RGBA
+    const DecodedImage decoded = decode_image(png.data(), png.size());
+    for (size_t i = 0; i < alpha.size(); ++i) EXPECT_EQ(decoded.rgba[i * 4 + 3], std::lround(alpha[i] * 255)) << i;
+    std::ifstream settings_file(settings_file_name(m_settings.out_dir, "world_ball"));
+    EXPECT_EQ(nlohmann::json::parse(settings_file)["render"]["output"]["transparent_background"], true);
+
+    // Another value is refused on resuming, as every setting the images depend on; --overwrite
+    // renders the frame again, opaque: no A channel, an RGB PNG.
+    m_settings.output.transparent_background = false;
+    EXPECT_NE(testing::input_error_of([&] {
+                  render_animation(m_settings);
+              }).find("/output/transparent_background: true -> (none)"),
+              std::string::npos);
+    m_settings.overwrite = true;
+    render_animation(m_settings);
+    for (const ExrChannelInfo& channel : read_exr_channels(exr)) EXPECT_FALSE(channel.name.ends_with("A"));
+    EXPECT_EQ(file_bytes(frame_file_name(m_settings.out_dir, "world_ball", 0, "png")).at(25), 2);  // RGB
+    const Rgb corner = read_exr(exr).pixels[0];  // the world again (in half floats)
+    EXPECT_NEAR(corner.r, 0.2f, 1e-3f);
+    EXPECT_NEAR(corner.b, 0.5f, 1e-3f);
 }
 
 TEST(Info, NamesAnimatedLightsAndTheSegmentsTheyMake) {

@@ -18,6 +18,8 @@ expect_files "$out/path" ball.settings.json ball_0003.exr ball_0003.png ball_000
 grep -q '"camera_samples": 192' "$out/path/ball_0003.stats.json" || { echo "path stats lack 16x12x1 camera samples"; exit 1; }
 "$binary" render "$source/scenes/ball.json" --method path --fixed-seed --frames 3 --spp 1 --size 16x12 --out "$out/fixed" --no-progress
 grep -q '"fixed_seed": true' "$out/fixed/ball.settings.json" || { echo "--fixed-seed is not in the settings file"; exit 1; }
+"$binary" render "$source/scenes/ball.json" --method path --transparent-background --frames 3 --spp 1 --size 16x12 --out "$out/clear" --no-progress
+grep -q '"transparent_background": true' "$out/clear/ball.settings.json" || { echo "--transparent-background is not in the settings file"; exit 1; }
 
 small=(--frames 3-4 --spp 1 --size 16x12 --photons 5000 --caustic-photons 0 --gather-samples 32 --no-progress)
 "$binary" render "$source/scenes/ball.json" "${small[@]}" --out "$out/localized"

@@ -2,7 +2,8 @@
 # `--video`: renders three tiny BALL frames into a folder whose name has a space, encodes them
 # with ffmpeg and checks with ffprobe that the MP4 is H.264, yuv420p, 3 frames at the scene's
 # frame rate, with odd image sizes padded to even; that a resumed run encodes the PNGs of the
-# frames it skipped too; and that a video ffmpeg cannot write is an error that keeps the frames.
+# frames it skipped too; that RGBA frames (--transparent-background) are encoded too; and that a
+# video ffmpeg cannot write is an error that keeps the frames.
 # Without ffmpeg it is skipped (exit 77), or fails under CI=true.
 set -euo pipefail
 binary=$1 source=$2 out=$3
@@ -31,6 +32,11 @@ python3 -c "import sys; n, d = '$(probe r_frame_rate)'.split('/'); sys.exit(abs(
 grep -q "1 frame(s) written, 2 complete ones skipped" "$out/resumed.log" || { echo "frames 5-6 were not skipped"; exit 1; }
 [ "$(ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames -of default=nw=1:nk=1 "$out/resumed.mp4")" = 3 ] \
   || { echo "the resumed video does not have 3 frames"; exit 1; }
+# RGBA frames: laid over black (ffmpeg's premultiply filter) before the padding and yuv420p.
+"$binary" render "$source/scenes/ball.json" --method path --frames 5-6 --spp 1 --size 41x31 --out "$out/alpha" \
+  --transparent-background --video "$out/alpha.mp4" --no-progress
+[ "$(ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames -of default=nw=1:nk=1 "$out/alpha.mp4")" = 2 ] \
+  || { echo "the video of RGBA frames does not have 2 frames"; exit 1; }
 # A video ffmpeg cannot write is an error (exit status 1) after the frames are written.
 if "$binary" render "$source/scenes/ball.json" --method path --frames 5 --spp 1 --size 16x12 --out "$out/failing" \
      --video /dev/null/x.mp4 --no-progress > "$out/failing.log" 2>&1; then

@@ -60,6 +60,7 @@ inline SceneDesc absorbing_ball_before_light(Rgb attenuation_color) {
 /// fills the left half of the image.
 inline SceneDesc two_rooms_one_moving_ball() {
     SceneDesc desc = make_empty_scene({4, 1.5f, -6}, {4, 1.5f, 0}, 48, 24, 40);
+    desc.name = "two_rooms";
     desc.frame_count = 2;
     const int white = add_material(desc, {.reflectance = {0.7f, 0.7f, 0.7f}});
     add_object(desc, make_quad({0, 0, 0}, {0, 0, 4}, {8, 0, 0}), white);  // floor
@@ -73,6 +74,28 @@ inline SceneDesc two_rooms_one_moving_ball() {
     add_object(desc, Sphere{{0, 0, 0}, 0.4f}, white);
     desc.objects.back().placement[0].translation_track =
         Track<Vec3>{Interpolation::linear, {0, 1}, {{1.5f, 0.4f, 2}, {2.5f, 0.4f, 2}}};
+    return desc;
+}
+
+/// A grey, a glass and a mirror ball (radius 0.55, at x = -1.4, 0 and 1.4, y = 0.3) in front of
+/// a uniform blue world that lights them, and a small grey ball moving below them from x = -1.5
+/// to 1.5 over 2 frames; the camera stands still at z = 5, 32 x 24 pixels, and sees the world
+/// around them.
+inline SceneDesc balls_before_the_world() {
+    SceneDesc desc = make_empty_scene({0, 0, 5}, {0, 0, 0}, 32, 24, 40);
+    desc.name = "balls";
+    desc.frame_count = 2;
+    desc.fps = 1;  // frame 1 at 1 s, where the track ends
+    const int grey = add_material(desc, {.reflectance = {0.6f, 0.6f, 0.6f}});
+    add_object(desc, Sphere{{-1.4f, 0.3f, 0}, 0.55f}, grey);
+    add_object(desc, Sphere{{0, 0.3f, 0}, 0.55f},
+               add_material(desc, {.type = MaterialType::dielectric, .ior = 1.5f, .roughness = 0}));
+    add_object(desc, Sphere{{1.4f, 0.3f, 0}, 0.55f},
+               add_material(desc, {.type = MaterialType::mirror, .reflectance = {0.9f, 0.9f, 0.9f}}));
+    add_object(desc, Sphere{{0, 0, 0}, 0.25f}, grey);
+    desc.objects.back().placement[0].translation_track =
+        Track<Vec3>{Interpolation::linear, {0, 1}, {{-1.5f, -1.1f, 0}, {1.5f, -1.1f, 0}}};
+    desc.world = WorldDesc::uniform({0.2f, 0.3f, 0.5f});
     return desc;
 }
 

@@ -52,7 +52,7 @@ std::vector<std::string_view> names_of(const std::vector<LayerOf<Frame>>& layers
 /// `frame` as a RenderedFrame of `method`, its layers taken out in table order.
 template <class Frame>
 RenderedFrame rendered(Method method, Frame&& frame, const std::vector<LayerOf<std::decay_t<Frame>>>& layers) {
-    RenderedFrame out{std::move(frame.beauty), {}, std::move(frame.stats)};
+    RenderedFrame out{std::move(frame.beauty), {}, std::move(frame.stats), std::move(frame.alpha)};
     out.stats->method = std::string(method_info(method).name);
     for (const auto& layer : layers)
         out.layers.push_back({std::string(layer.name), std::move(frame.*layer.image), layer.grey});

@@ -43,6 +43,9 @@ struct RenderedFrame {
     Image beauty;
     std::vector<NamedImage> layers;
     std::optional<FrameStats> stats;
+    /// With a transparent background (Camera::transparent_background): the share of each
+    /// pixel's camera rays that met a surface, grey; the beauty and its layers are premultiplied.
+    std::optional<Image> alpha;
 };
 
 /// Renders one frame; `solution` is the segment's static solution for a method with a static

@@ -60,27 +60,37 @@ Rgb estimate_direct(const FrameContext& context, const SurfacePoint& sp, const O
     return f * light->Li * (std::abs(wi.z) * weight / light->pdf);
 }
 
-/// The mean radiance of pixel (x, y) over its stratified camera samples.
-Rgb estimate_pixel(const FrameContext& context, const PathTracerSettings& settings, int x, int y, PathCounts& counts) {
+/// A pixel's mean radiance over its camera samples, and the share of them that met a surface.
+struct PixelEstimate {
+    Rgb L;
+    float covered = 0;
+};
+
+/// Pixel (x, y) over its stratified camera samples.
+PixelEstimate estimate_pixel(const FrameContext& context, const PathTracerSettings& settings, int x, int y,
+                             PathCounts& counts) {
     const Camera& camera = context.frame.camera;
     PixelStreams streams(settings, context.frame.frame, uint64_t(y) * uint64_t(camera.width) + uint64_t(x));
     Rgb sum;
+    int met_surface = 0;
     const Vec2 shift = streams.shift().next_vec2();
     for (int s = 0; s < settings.samples_per_pixel; ++s) {
         const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(settings.samples_per_pixel), shift);
         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-        const Rgb L = trace_path(context, ray, streams.sample(s), settings, counts);
+        const PathRadiance path = trace_path(context, ray, streams.sample(s), settings, counts);
+        met_surface += path.met_surface;
         // A NaN or infinity from a degenerate path is dropped, not smeared over the frame.
-        if (is_finite(L)) sum += L;
+        if (is_finite(path.L)) sum += path.L;
     }
-    return sum / float(settings.samples_per_pixel);
+    return {sum / float(settings.samples_per_pixel), float(met_surface) / float(settings.samples_per_pixel)};
 }
 
 }  // namespace
 
-Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings,
-               PathCounts& counts) {
+PathRadiance trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings,
+                        PathCounts& counts) {
     Rgb L, beta{1, 1, 1};
+    bool met_surface = false;
     bool specular_bounce = true;  // the camera ray counts emitters fully, like a delta bounce
     float bsdf_pdf = 0;
     Vec3 previous_p, previous_n;  // the last surface point's, for MIS weights
@@ -88,12 +98,14 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
         ++counts.rays;
         const std::optional<Hit> hit = context.tracer.intersect(ray);
         if (!hit) {
+            if (depth == 0 && context.frame.camera.transparent_background) break;
             // The lights from far away, weighted against sampling them at the previous vertex.
             L += beta * (specular_bounce ? context.lights.escaped_radiance(ray.d)
                                          : context.lights.escaped_radiance(previous_p, ray.d, previous_n, bsdf_pdf));
             break;
         }
         ++counts.vertices;
+        met_surface = true;
         const SurfacePoint sp = make_surface_point(context.scene, context.frame, ray, *hit);
         beta *= volume_transmittance(context, sp, ray.d, hit->t);  // the segment crossed absorbing glass
         const Rgb emission = context.frame.emission[size_t(sp.object)];
@@ -135,7 +147,7 @@ Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTrace
             beta = beta / survive;
         }
     }
-    return L;
+    return {L, met_surface};
 }
 
 PathFrame render_path_traced(const FrameContext& context, const PathTracerSettings& settings,
@@ -143,7 +155,8 @@ PathFrame render_path_traced(const FrameContext& context, const PathTracerSettin
     const Stopwatch total;
     begin_phase("path tracing");
     const Camera& camera = context.frame.camera;
-    PathFrame out{Image(camera.width, camera.height), {}};
+    PathFrame out{Image(camera.width, camera.height), std::nullopt, {}};
+    if (camera.transparent_background) out.alpha = Image(camera.width, camera.height);
     const int tiles = ((camera.width + tile_size - 1) / tile_size) * ((camera.height + tile_size - 1) / tile_size);
     std::atomic<int> tiles_done = 0;
     // Each tile counts on its own and adds its counts once: integer sums do not depend on the
@@ -152,7 +165,11 @@ PathFrame render_path_traced(const FrameContext& context, const PathTracerSettin
     parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
         PathCounts counts;
         for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) out.beauty.at(x, y) = estimate_pixel(context, settings, x, y, counts);
+            for (int x = x0; x < x1; ++x) {
+                const PixelEstimate pixel = estimate_pixel(context, settings, x, y, counts);
+                out.beauty.at(x, y) = pixel.L;
+                if (out.alpha) out.alpha->at(x, y) = Rgb{1, 1, 1} * pixel.covered;
+            }
         rays += counts.rays;
         vertices += counts.vertices;
         if (progress) progress(++tiles_done, tiles);

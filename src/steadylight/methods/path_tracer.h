@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -38,6 +39,9 @@ using TileProgress = std::function<void(int, int)>;
 /// A path-traced frame: the image, and its time, camera samples, rays and path vertices.
 struct PathFrame {
     Image beauty;
+    /// With a transparent background (Camera::transparent_background): the share of each
+    /// pixel's camera samples that met a surface, grey; the beauty is premultiplied by it.
+    std::optional<Image> alpha;
     FrameStats stats;
 };
 
@@ -51,9 +55,17 @@ struct PathCounts {
     long vertices = 0;
 };
 
-/// Radiance arriving along `ray` (from its far end towards its origin); adds its rays and
-/// vertices to `counts`.
-Rgb trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings,
-               PathCounts& counts);
+/// What a camera ray's path found: the radiance arriving along the ray (from its far end
+/// towards its origin), and whether the ray met a surface.
+struct PathRadiance {
+    Rgb L;
+    bool met_surface = false;
+};
+
+/// The path from camera ray `ray`; adds its rays and vertices to `counts`. With a transparent
+/// background (Camera::transparent_background) the world the ray itself sees is left out; what
+/// the path sees of it further on (through glass, in a mirror, as light) stays.
+PathRadiance trace_path(const FrameContext& context, Ray ray, Pcg32& rng, const PathTracerSettings& settings,
+                        PathCounts& counts);
 
 }  // namespace steadylight

@@ -5,6 +5,8 @@
 //   L_r = L_d + L_i + L_c + L_s.
 #pragma once
 
+#include <optional>
+
 #include "steadylight/base/image.h"
 #include "steadylight/passes/frame_stats.h"
 #include "steadylight/passes/photon_mapping_settings.h"
@@ -16,7 +18,8 @@ namespace steadylight {
 /// The frame and its parts (AOVs). beauty = direct + indirect + caustic + specular.
 struct PhotonFrame {
     Image beauty, direct, indirect, caustic, specular;
-    Image records;  // 1 where an irradiance record projects, 0 elsewhere (paper Fig. 3)
+    std::optional<Image> alpha;  // with a transparent background (ShadedFrame::alpha)
+    Image records;               // 1 where an irradiance record projects, 0 elsewhere (paper Fig. 3)
     FrameStats stats;
 };
 

@@ -5,11 +5,11 @@
 
 namespace steadylight {
 
-std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<NamedImage>& aovs) {
+std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<NamedImage>& aovs, const Image* alpha) {
     // The beauty twice: plain viewers show only the unnamed R, G, B, while Blender's Image node
     // and Nuke's layer menu list layers by their prefix. One layer more: a fourteenth of a
     // localized frame's file, but a path-traced frame, which has no other layer, doubles.
-    std::vector<ExrLayer> layers{{"", &beauty}, {"beauty", &beauty}};
+    std::vector<ExrLayer> layers{{"", &beauty, false, alpha}, {"beauty", &beauty, false, alpha}};
     for (const NamedImage& aov : aovs) layers.push_back({aov.name, &aov.image, aov.grey});
     return layers;
 }

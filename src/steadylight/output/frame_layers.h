@@ -1,8 +1,9 @@
 // The layers of a frame's multi-layer EXR, as compositors (Nuke, Blender, Natron) read them: the
-// final image as the default R, G, B (what plain viewers show, Nuke's `rgba`) and again as the
-// named layer `beauty`, then every AOV as `<name>.R/G/B`, or as the single channel `<name>.Y`
-// for the grey ones (influence and the record masks). Which AOVs a method has, and which are
-// grey, is the method table's to say (methods/method.h).
+// final image as the default R, G, B (what plain viewers show, Nuke's `rgba`; with a
+// transparent background R, G, B, A) and again as the named layer `beauty`, then every AOV as
+// `<name>.R/G/B`, or as the single channel `<name>.Y` for the grey ones (influence and the
+// record masks). Which AOVs a method has, and which are grey, is the method table's to say
+// (methods/method.h).
 #pragma once
 
 #include <string>
@@ -13,9 +14,12 @@
 
 namespace steadylight {
 
-/// The EXR layers of a frame: "" and "beauty" for `beauty`, then `aovs` in order. The result
-/// points into `beauty` and `aovs`, which must outlive it.
-std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<NamedImage>& aovs);
+/// The EXR layers of a frame: "" and "beauty" for `beauty`, then `aovs` in order. With `alpha`
+/// (a transparent background) both beauty layers have an A channel too; the AOVs have none, as
+/// Blender's passes have none. The result points into `beauty`, `aovs` and `alpha`, which must
+/// outlive it.
+std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<NamedImage>& aovs,
+                                       const Image* alpha = nullptr);
 
 /// The values of a frame's layers that were not finite (NaN, an infinity). No layer may hold
 /// one: it is a defect upstream, and a compositor's blur would spread it over the image.

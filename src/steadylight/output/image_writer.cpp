@@ -66,13 +66,16 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
         std::vector<ChannelData> channels;
         channels.reserve(layers.size() * 3);
         const size_t pixel_size = type == ExrPixelType::half ? sizeof(half) : sizeof(float);
-        for (const ExrLayer& layer : layers)
-            for (const auto& [name, component] : exr_layer_channels(layer.name, layer.scalar)) {
-                ChannelData& data = channels.emplace_back(*layer.image, component, type);
-                header.channels().insert(name, Imf::Channel(imf_type(type)));
-                buffer.insert(name,
-                              Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
-            }
+        const auto add_channel = [&](const std::string& name, const Image& image, int component) {
+            ChannelData& data = channels.emplace_back(image, component, type);
+            header.channels().insert(name, Imf::Channel(imf_type(type)));
+            buffer.insert(name, Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
+        };
+        for (const ExrLayer& layer : layers) {
+            for (const auto& [name, component] : exr_layer_channels(layer.name, layer.scalar))
+                add_channel(name, *layer.image, component);
+            if (layer.alpha) add_channel(layer.name.empty() ? "A" : layer.name + ".A", *layer.alpha, 0);
+        }
         // OpenEXR compresses blocks of scanlines on its own threads, one per core; the bytes
         // written do not depend on how many.
         Imf::OutputFile out(file.c_str(), header, int(std::max(1u, std::thread::hardware_concurrency())));
@@ -83,21 +86,23 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
 
 void write_exr(const std::string& path, const Image& image) { write_exr(path, {{"", &image}}); }
 
-std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view) {
-    const std::vector<unsigned char> pixels = encode_srgb8(image, view);
+std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view, const Image* alpha) {
+    const std::vector<unsigned char> pixels = encode_srgb8(image, view, alpha);
+    const int components = alpha ? 4 : 3;
     std::vector<unsigned char> png;
     const auto append = [](void* context, void* data, int size) {
         auto& out = *static_cast<std::vector<unsigned char>*>(context);
         const auto* bytes = static_cast<const unsigned char*>(data);
         out.insert(out.end(), bytes, bytes + size);
     };
-    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, pixels.data(), image.width * 3))
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, components, pixels.data(),
+                                image.width * components))
         throw std::runtime_error("PNG encoder failed");
     return png;
 }
 
-void write_png(const std::string& path, const Image& image, const ViewTransform& view) {
-    write_binary_file(path, encode_png(image, view));
+void write_png(const std::string& path, const Image& image, const ViewTransform& view, const Image* alpha) {
+    write_binary_file(path, encode_png(image, view, alpha));
 }
 
 Image read_exr(const std::string& path, const std::string& layer) {
@@ -112,6 +117,24 @@ std::vector<ExrChannelInfo> read_exr_channels(const std::string& path) {
             channels.push_back(
                 {it.name(), it.channel().type == Imf::HALF ? ExrPixelType::half : ExrPixelType::float32});
         return channels;
+    } catch (const std::exception& e) {
+        throw InputError(path, std::string("cannot read EXR: ") + e.what());
+    }
+}
+
+std::vector<float> read_exr_channel(const std::string& path, const std::string& channel) {
+    try {
+        Imf::InputFile in(path.c_str());
+        if (!in.header().channels().findChannel(channel)) throw std::runtime_error("no channel " + channel);
+        const Imath::Box2i window = in.header().dataWindow();
+        const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+        std::vector<float> values(size_t(width) * size_t(height));
+        Imf::FrameBuffer buffer;
+        buffer.insert(
+            channel, Imf::Slice::Make(Imf::FLOAT, values.data(), window, sizeof(float), sizeof(float) * size_t(width)));
+        in.setFrameBuffer(buffer);
+        in.readPixels(window.min.y, window.max.y);
+        return values;
     } catch (const std::exception& e) {
         throw InputError(path, std::string("cannot read EXR: ") + e.what());
     }

@@ -15,11 +15,14 @@ namespace steadylight {
 /// One named image in a multi-layer EXR: channels `<name>.R`, `<name>.G`, `<name>.B`, or plain
 /// R, G, B for the empty name (what every viewer shows first, and Nuke's `rgba` layer). A
 /// `scalar` layer holds a grey image and is stored as the single channel `<name>.Y` (OpenEXR's
-/// name for a luminance-only channel); its value is the image's red channel.
+/// name for a luminance-only channel); its value is the image's red channel. With `alpha` (a
+/// grey image, its red channel) the layer also has `<name>.A`, or plain A: the colours are then
+/// premultiplied by it, as OpenEXR's convention has them.
 struct ExrLayer {
     std::string name;
     const Image* image;
     bool scalar = false;
+    const Image* alpha = nullptr;
 };
 
 /// How EXR channels are stored: 16-bit half (the default; enough for display-referred work
@@ -33,10 +36,12 @@ ExrPixelType parse_exr_pixel_type(const std::string& name, const std::string& op
 void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, ExrPixelType type = ExrPixelType::half);
 /// Linear RGB radiance as a half-float EXR with channels R, G, B.
 void write_exr(const std::string& path, const Image& image);
-/// The image through `view` as the bytes of an 8-bit sRGB PNG file (for pages that embed images).
-std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view = {});
+/// The image through `view` as the bytes of an 8-bit sRGB PNG file (for pages that embed images):
+/// RGB, or with `alpha` RGBA, the image being premultiplied by it (encode_srgb8 says how).
+std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& view = {}, const Image* alpha = nullptr);
 /// The image through `view` as an 8-bit sRGB PNG (encode_png written to `path`).
-void write_png(const std::string& path, const Image& image, const ViewTransform& view = {});
+void write_png(const std::string& path, const Image& image, const ViewTransform& view = {},
+               const Image* alpha = nullptr);
 /// Reads one layer of an EXR (for tests and tools) with decode_exr (scene/exr_reading.h): its
 /// R, G, B channels, or for a grey layer its Y channel copied into R, G and B. Throws InputError
 /// naming the file.
@@ -50,6 +55,11 @@ struct ExrChannelInfo {
 /// The channels of an EXR file, from its header only (for tests and tools).
 /// Throws InputError naming the file when it cannot be read.
 std::vector<ExrChannelInfo> read_exr_channels(const std::string& path);
+
+/// One channel of an EXR file (`A`, `beauty.A`, ...) as floats, row by row from the top of the
+/// data window (for tests and tools). Throws InputError naming the file when it cannot be read
+/// or has no such channel.
+std::vector<float> read_exr_channel(const std::string& path, const std::string& channel);
 
 /// One layer of an EXR as its header lists it: channels `<name>.<channel>`, or the channels
 /// without a dot for the empty name.

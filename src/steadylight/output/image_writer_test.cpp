@@ -10,6 +10,7 @@
 #include "steadylight/base/error.h"
 #include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
+#include "steadylight/scene/image_decoding.h"
 
 namespace steadylight {
 namespace {
@@ -94,6 +95,47 @@ TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     EXPECT_EQ(layers[3].name, "influence");
     EXPECT_EQ(layers[3].channels, (std::vector<std::string>{"Y"}));
     fs::remove(path);
+}
+
+// With a transparent background both beauty layers carry A (what Nuke reads as rgba.alpha and
+// Blender as the layer's alpha); the AOVs stay as they are. Without alpha nothing changes.
+TEST(ImageWriter, FrameExrWithAlphaHasAnAChannelInBothBeautyLayers) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_alpha.exr").string();
+    const Image beauty = gradient(6, 4);
+    Image alpha(6, 4);
+    for (size_t i = 0; i < alpha.pixels.size(); ++i) alpha.pixels[i] = Rgb{1, 1, 1} * (float(i % 5) / 4);
+    const std::vector<NamedImage> aovs = {{"direct", gradient(6, 4)}, {"influence", alpha, true}};
+    write_exr(path, frame_exr_layers(beauty, aovs, &alpha));
+    EXPECT_EQ(channel_names(read_exr_channels(path)),
+              (std::vector<std::string>{"A", "B", "G", "R", "beauty.A", "beauty.B", "beauty.G", "beauty.R", "direct.B",
+                                        "direct.G", "direct.R", "influence.Y"}));
+    for (const std::string channel : {"A", "beauty.A"}) {
+        const std::vector<float> values = read_exr_channel(path, channel);
+        ASSERT_EQ(values.size(), alpha.pixels.size());
+        for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(values[i], alpha.pixels[i].r) << channel << " " << i;
+    }
+    EXPECT_EQ(read_exr(path).pixels, read_exr(path, "beauty").pixels);
+    EXPECT_THROW(read_exr_channel(path, "direct.A"), InputError);
+
+    write_exr(path, frame_exr_layers(beauty, aovs));
+    for (const ExrChannelInfo& channel : read_exr_channels(path)) EXPECT_FALSE(channel.name.ends_with("A"));
+    fs::remove(path);
+}
+
+/// The colour type of a PNG file's bytes (its IHDR's): 2 RGB, 6 RGBA.
+int png_colour_type(const std::vector<unsigned char>& png) { return png.at(25); }
+
+TEST(ImageWriter, PngWithAlphaIsRgbaAndWithoutRgb) {
+    const Image image = gradient(5, 3);
+    Image alpha(5, 3);
+    alpha.at(1, 1) = {1, 1, 1};
+    EXPECT_EQ(png_colour_type(encode_png(image)), 2);
+    const std::vector<unsigned char> png = encode_png(image, {}, &alpha);
+    EXPECT_EQ(png_colour_type(png), 6);
+    const DecodedImage decoded = decode_image(png.data(), png.size());
+    ASSERT_EQ(decoded.width, 5);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x) EXPECT_EQ(decoded.rgba[size_t(y * 5 + x) * 4 + 3], x == 1 && y == 1 ? 255 : 0);
 }
 
 // Half layers hold only finite values: beyond 65504 a half is +inf (a compositor's blur would

@@ -1,5 +1,7 @@
-// What the written files look like, besides the rendering itself: the EXR pixel type, the view
-// transform of the PNGs, and the optional video of the PNG sequence (docs/usage.md, "Outputs").
+// What the written files look like: the EXR pixel type, the view transform of the PNGs, whether
+// the background is transparent (the world left out of what the camera sees directly, and an
+// alpha channel in the EXR and the PNG), and the optional video of the PNG sequence
+// (docs/usage.md, "Outputs").
 #pragma once
 
 #include <string>
@@ -16,15 +18,22 @@ struct OutputSettings {
     ExrPixelType exr_type = ExrPixelType::half;
     ViewTransform view;      // PNGs (and so the video)
     std::string video_file;  // empty: no video; else an H.264 MP4 of the PNG sequence
+    /// Blender's Film > Transparent: the world seen directly by the camera is left out, and the
+    /// frames get alpha, the share of each pixel's camera rays that met a surface (glass and
+    /// mirrors count as surfaces: the world seen through them stays, as in Cycles by default).
+    bool transparent_background = false;
 };
 
 /// What shapes the written images: the settings file's "render" part holds it
-/// (run/settings_file.h). The video is left out, since it does not change the frames.
+/// (run/settings_file.h). The video is left out, since it does not change the frames. A
+/// transparent background is there only when chosen: the folders rendered before the option
+/// existed hold opaque frames, and stay valid for a run that does not choose it.
 inline void to_json(nlohmann::json& json, const OutputSettings& s) {
     json = {{"exr_type", s.exr_type == ExrPixelType::half ? "half" : "float"},
             {"exposure_ev", s.view.exposure_ev},
             {"view_transform", s.view.curve == ViewCurve::filmic ? "filmic" : "standard"},
             {"dither", s.view.dither}};
+    if (s.transparent_background) json["transparent_background"] = true;
 }
 
 /// Throws InputError for an exposure out of range (or NaN).

@@ -81,8 +81,8 @@ std::vector<std::string> ffmpeg_arguments(const VideoJob& job, const std::string
             "-start_number", std::to_string(job.first_frame), "-i", pattern, "-frames:v",
             std::to_string(job.frame_count),
             // H.264 in yuv420p needs even sizes: pad odd ones with one black row or column.
-            "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18", "-movflags",
-            "+faststart", "-f", "mp4", temporary_output};
+            "-vf", std::string(job.alpha ? "premultiply=inplace=1," : "") + "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v",
+            "libx264", "-pix_fmt", "yuv420p", "-crf", "18", "-movflags", "+faststart", "-f", "mp4", temporary_output};
 }
 
 void encode_video(const VideoJob& job) {

@@ -1,8 +1,8 @@
 // `--video FILE.mp4`: after the frames are written, the PNG sequence is encoded with the
 // `ffmpeg` program (H.264 through libx264, yuv420p so that every player shows it, the scene's
-// frame rate, odd sizes padded to even). ffmpeg runs through posix_spawn with an argument
-// vector, never a shell, so paths with spaces or quotes need no quoting. The video is written
-// under a temporary name and renamed when ffmpeg succeeds.
+// frame rate, odd sizes padded to even, PNGs with alpha laid over black). ffmpeg runs through posix_spawn with an
+// argument vector, never a shell, so paths with spaces or quotes need no quoting. The video is written under a
+// temporary name and renamed when ffmpeg succeeds.
 #pragma once
 
 #include <optional>
@@ -19,6 +19,10 @@ struct VideoJob {
     int frame_count = 0;
     float fps = 24;
     std::string output;  // the .mp4 to write
+    /// The PNGs have alpha (a transparent background): the video, which has none, shows them
+    /// over black, their colours multiplied by their alpha as a viewer lays them over black
+    /// (ffmpeg would drop the alpha, and edges would lose their antialiasing).
+    bool alpha = false;
 };
 
 /// The path of the `ffmpeg` executable found in PATH, or nothing.

@@ -49,6 +49,12 @@ TEST(Video, PercentSignsInNamesAreEscapedForFfmpegsPattern) {
 TEST(Video, OddSizesArePaddedToEven) {
     const std::string filter = value_of(ffmpeg_arguments({.frame_count = 1}, "v"), "-vf");
     EXPECT_NE(filter.find("pad=ceil(iw/2)*2:ceil(ih/2)*2"), std::string::npos);
+    EXPECT_EQ(filter.find("premultiply"), std::string::npos);
+}
+
+TEST(Video, PngsWithAlphaAreLaidOverBlack) {
+    const std::string filter = value_of(ffmpeg_arguments({.frame_count = 1, .alpha = true}, "v"), "-vf");
+    EXPECT_EQ(filter.rfind("premultiply=inplace=1,", 0), 0u);  // first, before the padding
 }
 
 }  // namespace

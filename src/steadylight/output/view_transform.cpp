@@ -54,17 +54,26 @@ float linear_to_srgb(float v) {
     return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
 }
 
-std::vector<unsigned char> encode_srgb8(const Image& image, const ViewTransform& transform) {
-    std::vector<unsigned char> bytes(image.pixels.size() * 3);
+std::vector<unsigned char> encode_srgb8(const Image& image, const ViewTransform& transform, const Image* alpha) {
+    const size_t channels = alpha ? 4 : 3;
+    std::vector<unsigned char> bytes(image.pixels.size() * channels);
+    const auto to_byte = [](float code) { return static_cast<unsigned char>(std::clamp(std::lround(code), 0L, 255L)); };
     for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x)
+        for (int x = 0; x < image.width; ++x) {
+            const size_t pixel = (size_t(y) * size_t(image.width) + size_t(x)) * channels;
+            Rgb colour = image.at(x, y);
+            if (alpha) {
+                const float a = std::clamp(alpha->at(x, y).r, 0.0f, 1.0f);
+                colour = a > 0 ? colour / a : Rgb{};
+                bytes[pixel + 3] = to_byte(255 * a);
+            }
             for (int c = 0; c < 3; ++c) {
-                const float linear = apply_exposure(image.at(x, y)[c], transform.exposure_ev);
+                const float linear = apply_exposure(colour[c], transform.exposure_ev);
                 float code = 255 * linear_to_srgb(apply_view_curve(linear, transform.curve));
                 if (transform.dither) code += dither_offset(x, y, c);
-                const size_t i = (size_t(y) * size_t(image.width) + size_t(x)) * 3 + size_t(c);
-                bytes[i] = static_cast<unsigned char>(std::clamp(std::lround(code), 0L, 255L));
+                bytes[pixel + size_t(c)] = to_byte(code);
             }
+        }
     return bytes;
 }
 

@@ -38,6 +38,12 @@ float linear_to_srgb(float v);
 /// The image as 8-bit sRGB bytes, RGB interleaved, row-major: every pixel and channel through
 /// exposure, the view curve, sRGB encoding, dither (a hash of x, y and channel, the same in
 /// every frame so that it does not flicker) and rounding.
-std::vector<unsigned char> encode_srgb8(const Image& image, const ViewTransform& transform);
+/// With `alpha` (a grey image of the same size, read from its red channel) the bytes are RGBA
+/// with straight alpha, as PNG stores it: `image` is premultiplied by alpha, so each pixel is
+/// divided by its alpha first (0 where alpha is 0), and only then transformed: the curves are
+/// not linear, and a surface's edge pixels must keep the surface's colour, not a darker one.
+/// Alpha is a share, stored linearly and rounded without dither (0 and 1 stay 0 and 255).
+std::vector<unsigned char> encode_srgb8(const Image& image, const ViewTransform& transform,
+                                        const Image* alpha = nullptr);
 
 }  // namespace steadylight

@@ -1,5 +1,6 @@
 // Tests for the PNG view transform (view_transform.h): exposure, the sRGB curve at the
-// standard's known points, the filmic curve's shape, and deterministic 8-bit encoding.
+// standard's known points, the filmic curve's shape, deterministic 8-bit encoding, and straight
+// alpha.
 #include "steadylight/output/view_transform.h"
 
 #include <gtest/gtest.h>
@@ -84,6 +85,34 @@ TEST(ViewTransform, DitherIsDeterministicAndMovesAtMostHalfACodeValue) {
         differs |= dithered[i] != plain[i];
     }
     EXPECT_TRUE(differs);
+}
+
+// PNG alpha is straight: a pixel half covered by a surface holds half the surface's light
+// (premultiplied) and is written with the surface's own colour, through the same curves, and
+// alpha 128; where alpha is 0 nothing is left. Dither moves the colours only.
+TEST(ViewTransform, AlphaDividesThePremultipliedColourBeforeTheCurves) {
+    const Rgb surface{0.9f, 0.35f, 0.02f};
+    Image straight(3, 1), premultiplied(3, 1), alpha(3, 1);
+    const float coverage[] = {1, 0.5f, 0};
+    for (int x = 0; x < 3; ++x) {
+        straight.at(x, 0) = surface;
+        premultiplied.at(x, 0) = surface * coverage[x];
+        alpha.at(x, 0) = Rgb{1, 1, 1} * coverage[x];
+    }
+    for (const ViewTransform view : {ViewTransform{.dither = false}, ViewTransform{.exposure_ev = 1.5f},
+                                     ViewTransform{.curve = ViewCurve::filmic}}) {
+        const std::vector<unsigned char> rgb = encode_srgb8(straight, view);
+        const std::vector<unsigned char> rgba = encode_srgb8(premultiplied, view, &alpha);
+        ASSERT_EQ(rgba.size(), 3u * 4);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(rgba[size_t(c)], rgb[size_t(c)]) << c;
+            EXPECT_EQ(rgba[size_t(4 + c)], rgb[size_t(3 + c)]) << c;
+            EXPECT_EQ(rgba[size_t(8 + c)], 0) << c;
+        }
+        EXPECT_EQ(rgba[3], 255);
+        EXPECT_EQ(rgba[7], 128);
+        EXPECT_EQ(rgba[11], 0);
+    }
 }
 
 TEST(ViewTransform, UnknownNameIsAnInputError) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "steadylight/base/image.h"
 #include "steadylight/passes/frame_stats.h"
@@ -27,6 +28,7 @@ enum class StaticCacheUse {
 
 struct LocalizedFrame {
     Image beauty, direct, indirect, caustic, specular;
+    std::optional<Image> alpha;             // with a transparent background (ShadedFrame::alpha)
     Image indirect_static;                  // L_i from the static cache alone (paper Fig. 1d)
     Image L_y, L_t;                         // the two estimates, as radiance (Fig. 1e, 1f)
     Image influence;                        // I relative to the static indirect irradiance (Fig. 4d, 5), at most 1000

@@ -157,6 +157,10 @@ void expect_same_layers(const LocalizedFrame& a, const LocalizedFrame& b, const 
             for (int px = 0; px < x.width; ++px) differing += !(x.at(px, py) == y.at(px, py));
         EXPECT_EQ(differing, 0) << what << " " << name;
     }
+    ASSERT_EQ(a.alpha.has_value(), b.alpha.has_value()) << what;
+    if (a.alpha) {
+        EXPECT_TRUE(a.alpha->pixels == b.alpha->pixels) << what << " alpha";
+    }
 }
 
 class PixelReuseOnScene : public ::testing::TestWithParam<std::string> {};
@@ -219,6 +223,49 @@ TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {
     // The room without the ball is reused whole.
     EXPECT_GT(clear, a.beauty.width * a.beauty.height / 3);
     EXPECT_EQ(b.stats.pixels_reused, clear);
+}
+
+// With a transparent background the static frame keeps each pixel's coverage with its sums: a
+// reused pixel's alpha is the one shading gives, and stays where nothing moved. In the balls'
+// world every lit surface may see the moving ball in its sky (the world's light reaches from
+// everywhere), so only the background is reused there; the two rooms, lit by their lamps, are
+// reused whole where the ball is not, their open sides and the space around them transparent.
+TEST(PixelReuse, TransparentBackgroundKeepsAlphaWithThePixels) {
+    for (SceneDesc desc : {testing::balls_before_the_world(), testing::two_rooms_one_moving_ball()}) {
+        desc.camera.transparent_background = true;
+        const Scene scene(std::move(desc));
+        const PhotonMappingSettings settings = small_settings();
+        RayTracer tracer(scene, scene.evaluate(0));
+        StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+        const Bsdfs bsdfs = make_bsdfs(scene);
+        std::vector<LocalizedFrame> frames;
+        for (const int frame : {0, 1}) {
+            const PlacedFrame placed(scene, tracer, bsdfs, frame);
+            frames.push_back(run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected));
+            std::shared_ptr<const StaticFrame> kept = std::move(solution.static_frame);
+            const LocalizedFrame whole =
+                run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+            solution.static_frame = std::move(kept);
+            expect_same_layers(frames.back(), whole, scene.name() + " frame " + std::to_string(frame));
+        }
+        const LocalizedFrame &a = frames[0], &b = frames[1];
+        ASSERT_TRUE(a.alpha && b.alpha);
+        int clear = 0, empty = 0, covered = 0;
+        for (int y = 0; y < a.beauty.height; ++y)
+            for (int x = 0; x < a.beauty.width; ++x)
+                if (a.changed.at(x, y).r == 0 && b.changed.at(x, y).r == 0) {
+                    ++clear;
+                    empty += a.alpha->at(x, y).r == 0, covered += a.alpha->at(x, y).r == 1;
+                    EXPECT_EQ(a.alpha->at(x, y), b.alpha->at(x, y)) << "pixel " << x << "," << y;
+                    EXPECT_EQ(a.beauty.at(x, y), b.beauty.at(x, y)) << "pixel " << x << "," << y;
+                }
+        EXPECT_GT(clear, a.beauty.width * a.beauty.height / 8) << scene.name();
+        EXPECT_GT(empty, 0) << scene.name();
+        if (!scene.desc().world) {
+            EXPECT_GT(covered, a.beauty.width * a.beauty.height / 8) << scene.name();
+        }
+        EXPECT_GE(b.stats.pixels_reused, clear) << scene.name();
+    }
 }
 
 TEST(PixelReuse, AnotherViewShadesEveryPixel) {

@@ -209,14 +209,18 @@ Components Shader::shade(const Ray& ray, int depth, Emission emission, const Pix
         pixel.recorder->add_flags(pixel.pixel_index,
                                   hit ? PixelRecorder::chain : PixelRecorder::chain | PixelRecorder::open_chain);
     if (!hit) {
-        // The lights from far away, seen as an emitter is (light sampling took them otherwise).
+        // The lights from far away, seen as an emitter is (light sampling took them otherwise);
+        // a transparent background leaves out what the camera sees of them directly.
         Components c;
-        if (emission == Emission::counted && !pixel.skip_direct) c.direct = m_context.lights.escaped_radiance(ray.d);
+        const bool hidden = depth == 0 && m_context.frame.camera.transparent_background;
+        if (emission == Emission::counted && !pixel.skip_direct && !hidden)
+            c.direct = m_context.lights.escaped_radiance(ray.d);
         return c;
     }
     const SurfacePoint surface = make_surface_point(m_context.scene, m_context.frame, ray, *hit);
     if (pixel.recorder) pixel.recorder->add_point(pixel.pixel_index, surface.p);
     Components c = shade_hit(ray, *hit, surface, depth, emission, pixel, strata, rng);
+    c.covered = 1;
     // Light from a hit inside absorbing glass crossed its volume (the AOV layers are not light).
     const Rgb absorbed = volume_transmittance(m_context, surface, ray.d, hit->t);
     if (absorbed != Rgb{1, 1, 1})
@@ -336,6 +340,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular})
         *image = Image(camera.width, camera.height);
     for (Image& image : out.extra) image = Image(camera.width, camera.height);
+    if (camera.transparent_background) out.alpha = Image(camera.width, camera.height);
     const int n = settings.samples_per_pixel;
     const Shader shader(context, settings, caustic, indirect, reflected, visibility);
     PixelRecorder* const recorder = source ? source->recorder() : nullptr;
@@ -364,6 +369,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                         Pcg32 path = pixel_stream(camera, x, y, PixelStream::path, s);
                         pixel.sample = s;
                         const Components c = shader.shade(ray, 0, Emission::counted, pixel, ray_strata, path);
+                        sum.covered += c.covered;  // a ray whose light is dropped still met its surface
                         if (!is_finite(c.sum())) continue;
                         sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic,
                             sum.specular += c.specular;
@@ -376,6 +382,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                 out.caustic.at(x, y) = sum.caustic * inv_n;
                 out.specular.at(x, y) = sum.specular * inv_n;
                 out.beauty.at(x, y) = sum.sum() * inv_n;
+                if (out.alpha) out.alpha->at(x, y) = Rgb{1, 1, 1} * (sum.covered * inv_n);
                 for (int e = 0; e < max_extra_layers; ++e) out.extra[size_t(e)].at(x, y) = sum.extra[size_t(e)] * inv_n;
             }
     });

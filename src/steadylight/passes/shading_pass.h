@@ -8,6 +8,7 @@
 #include <array>
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,7 @@ private:
 struct PixelSums {
     Rgb direct, indirect, caustic, specular;
     ExtraLayers extra{};
+    float covered = 0;  // camera rays that met a surface (the alpha of a transparent background)
 
     Rgb sum() const { return direct + indirect + caustic + specular; }
 };
@@ -170,6 +172,9 @@ using ReflectedRadiance = std::function<Rgb(const Ray& ray)>;
 
 struct ShadedFrame {
     Image beauty, direct, indirect, caustic, specular;
+    /// With a transparent background (Camera::transparent_background): the share of each
+    /// pixel's camera rays that met a surface, grey. The colours are then premultiplied by it.
+    std::optional<Image> alpha;
     std::array<Image, max_extra_layers> extra;
     double caustic_cpu_s = 0;  // time in caustic estimates, summed over threads
 };
@@ -188,6 +193,7 @@ void take_common_layers(ShadedFrame& shaded, FrameImages& out) {
     out.indirect = std::move(shaded.indirect);
     out.caustic = std::move(shaded.caustic);
     out.specular = std::move(shaded.specular);
+    out.alpha = std::move(shaded.alpha);
 }
 
 }  // namespace steadylight

@@ -2,11 +2,12 @@
 // (docs/style.md): the scene file, method, image size, every setting of the method, the frames,
 // threads, video, steadylight version and date. Its "render" part holds what the images depend
 // on — the scene (name and checksum of the scene file), method, size, --aov, the output settings
-// (EXR pixel type, exposure, view transform, dither; not --video) and the method's settings —
-// and a resumed run must match it: otherwise render_animation() stops with an InputError naming
-// the differences (frames from two settings would mix silently), unless --overwrite, which
-// renders the selected frames again and replaces the file. Frames, threads, folders, video,
-// version and date may differ; the frames listed grow with each run into the folder.
+// (EXR pixel type, exposure, view transform, dither, a transparent background; not --video) and
+// the method's settings — and a resumed run must match it: otherwise render_animation() stops
+// with an InputError naming the differences (frames from two settings would mix silently),
+// unless --overwrite, which renders the selected frames again and replaces the file. Frames,
+// threads, folders, video, version and date may differ; the frames listed grow with each run
+// into the folder.
 // The "render" part's checksum is the settings key in each frame's manifest
 // (run/frame_manifest.h), so no frame rendered with other settings is ever skipped.
 // The "render" part carries the file's format version (settings_format_version). A folder whose

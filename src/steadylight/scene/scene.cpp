@@ -121,6 +121,7 @@ FrameState Scene::evaluate(int frame) const {
     state.camera.tan_half_fov_y = std::tan(m_desc.camera.fov_y_deg * pi / 360);
     state.camera.width = m_desc.camera.width;
     state.camera.height = m_desc.camera.height;
+    state.camera.transparent_background = m_desc.camera.transparent_background;
     state.world_from_object.reserve(m_desc.objects.size());
     for (const ObjectDesc& object : m_desc.objects)
         state.world_from_object.push_back(evaluate_chain(object.placement, state.time_s));

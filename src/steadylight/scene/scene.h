@@ -19,6 +19,9 @@ struct Camera {
     float tan_half_fov_y = 0;
     int width = 0;
     int height = 0;
+    /// Camera rays that leave the scene see nothing of the world: those pixels are transparent
+    /// (CameraDesc::transparent_background). The world seen through glass or in a mirror stays.
+    bool transparent_background = false;
 
     /// The primary ray through film position (x, y) in pixels, e.g. (10.5, 3.5) is a centre.
     Ray generate_ray(float x, float y) const;
@@ -67,6 +70,8 @@ public:
     FrameState evaluate(int frame) const;
     /// Overrides the output resolution (from --size), keeping everything else.
     void set_resolution(int width, int height);
+    /// Leaves the world out of what the camera sees directly (from --transparent-background).
+    void set_transparent_background(bool transparent) { m_desc.camera.transparent_background = transparent; }
     /// A sphere holding every object at every frame of the animation: what light from far away
     /// (a sun, the world) is aimed at. One for the whole animation, so that photons from far
     /// away start the same way in every frame (the static and dynamic photon paths agree).

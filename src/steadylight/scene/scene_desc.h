@@ -162,6 +162,9 @@ struct CameraDesc {
     float fov_y_deg = 40;
     int width = 320;
     int height = 240;
+    /// The film's background: the world the camera sees directly is left out (alpha 0, as
+    /// Blender's Film > Transparent); set from --transparent-background, never from a scene file.
+    bool transparent_background = false;
 };
 
 /// Where SceneDesc::fps came from, as `steadylight info` says it.
