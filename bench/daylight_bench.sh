@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Daylight against an area light: BALL (lit by its ceiling panel) and scenes/daylit_room.json (the
+# same room closed, lit by a sun and a sky through a window marked as a portal), each rendered by
+# the command line with the photon and the localized method, one after the other, from empty
+# folders (static pass included), at the same size and photon count. Prints per run the whole
+# run's wall time, the mean frame time from the frames' statistics and the mean
+# distant_photons_inside; then, per scene, the photon / localized ratio, and the daylit room's
+# localized frame over BALL's. The goals: that frame within 1.5x of BALL's, its ratio at least
+# BALL's. Prints, asserts nothing.
+#   bash bench/daylight_bench.sh [--frames A-B] [--size WxH] [--photons N]   (default: 0-59, 320x240, 200000)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+frames=0-59 size=320x240 photons=200000
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --frames) frames=$2; shift 2 ;;
+    --size) size=$2; shift 2 ;;
+    --photons) photons=$2; shift 2 ;;
+    *) echo "daylight_bench: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+[ -x build/steadylight ] || bash scripts/build.sh
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+echo "frames $frames, $size, $photons photons; machine load $(cut -d' ' -f1-3 /proc/loadavg)"
+printf '%-12s %-9s %10s %12s %16s\n' scene method wall 'frame mean' 'distant inside'
+for scene in ball daylit_room; do
+  for method in photon localized; do
+    out=$work/${scene}_$method
+    start=$(date +%s%N)
+    build/steadylight render "scenes/$scene.json" --frames "$frames" --size "$size" --photons "$photons" \
+      --method "$method" --out "$out" --quiet
+    wall_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+    python3 - "$scene" "$method" "$wall_ms" "$out" <<'PY' | tee -a "$work/table"
+import glob, json, sys
+scene, method, wall_ms, folder = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+stats = [json.load(open(f)) for f in sorted(glob.glob(folder + "/*.stats.json"))]
+frame = sum(s["seconds"]["total"] for s in stats) / len(stats)
+inside = [s["distant_photons_inside"] for s in stats if "distant_photons_inside" in s]
+share = f"{100 * sum(inside) / len(inside):.1f}%" if inside else "-"
+print(f"{scene:<12} {method:<9} {wall_ms / 1000:8.1f} s {frame:10.3f} s {share:>16}")
+PY
+  done
+done
+python3 - "$work/table" <<'PY'
+import sys
+rows = {}
+for line in open(sys.argv[1]):
+    f = line.split()
+    rows[(f[0], f[1])] = (float(f[2]), float(f[4]))
+for scene in ("ball", "daylit_room"):
+    print(f"{scene}: photon / localized, whole run {rows[(scene, 'photon')][0] / rows[(scene, 'localized')][0]:.2f}x, "
+          f"per frame {rows[(scene, 'photon')][1] / rows[(scene, 'localized')][1]:.2f}x")
+print(f"daylit_room / ball, localized frame: {rows[('daylit_room', 'localized')][1] / rows[('ball', 'localized')][1]:.2f}x; "
+      f"whole run {rows[('daylit_room', 'localized')][0] / rows[('ball', 'localized')][0]:.2f}x")
+PY
