@@ -57,6 +57,20 @@ inline Vec2 stratified_2d(uint32_t index, uint32_t count, Vec2 shift) {
     return {std::min(x - std::floor(x), 0x1.fffffep-1f), std::min(y - std::floor(y), 0x1.fffffep-1f)};
 }
 
+/// A permutation of [0, count) chosen by `seed`: index i's place (Kensler 2013, "Correlated
+/// Multi-Jittered Sampling", its hash permutation, walking the cycle until it lands inside).
+inline uint32_t permuted_index(uint32_t i, uint32_t count, uint32_t seed) {
+    uint32_t w = count - 1;
+    w |= w >> 1, w |= w >> 2, w |= w >> 4, w |= w >> 8, w |= w >> 16;
+    do {
+        i ^= seed, i *= 0xe170893du, i ^= seed >> 16, i ^= (i & w) >> 4, i ^= seed >> 8, i *= 0x0929eb3fu;
+        i ^= seed >> 23, i ^= (i & w) >> 1, i *= 1 | seed >> 27, i *= 0x6935fa69u, i ^= (i & w) >> 11;
+        i *= 0x74dcb303u, i ^= (i & w) >> 2, i *= 0x9e501cc3u, i ^= (i & w) >> 2, i *= 0xc860a3dfu;
+        i &= w, i ^= i >> 5;
+    } while (i >= count);
+    return (i + seed) % count;
+}
+
 /// Power heuristic with beta = 2 (Veach 1997) for one sample from each of two strategies.
 inline float power_heuristic(float pdf_a, float pdf_b) {
     const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;

@@ -357,6 +357,10 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                     Pcg32 constants = pixel_stream(camera, x, y, PixelStream::constants);
                     const Vec2 shift = constants.next_vec2();
                     const LightStrata strata{0, uint32_t(n * settings.direct_samples), constants.next_vec2()};
+                    // Camera ray s takes the light strata of ray order(s), not of s: both run over the
+                    // pixel in the same order, and the light chosen from a stratum would otherwise
+                    // follow the ray's place in the pixel (a bias at the edges of what one light lights).
+                    const uint32_t order_seed = constants.next_u32();
                     PixelMemo memo, caustic_memo;
                     PixelSample pixel{x, y, 0, n, &memo, &caustic_memo};
                     pixel.recorder = recorder;
@@ -365,7 +369,9 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                     for (int s = 0; s < n; ++s) {
                         const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
                         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-                        const LightStrata ray_strata{uint32_t(s * settings.direct_samples), strata.count, strata.shift};
+                        const LightStrata ray_strata{
+                            permuted_index(uint32_t(s), uint32_t(n), order_seed) * uint32_t(settings.direct_samples),
+                            strata.count, strata.shift};
                         Pcg32 path = pixel_stream(camera, x, y, PixelStream::path, s);
                         pixel.sample = s;
                         const Components c = shader.shade(ray, 0, Emission::counted, pixel, ray_strata, path);
