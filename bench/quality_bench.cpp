@@ -40,7 +40,8 @@ namespace {
 const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 
 struct Options {
-    std::vector<std::string> scenes{"table", "corridor", "mirror_room", "glass_move", "flythrough", "ball", "cornell"};
+    std::vector<std::string> scenes{"table", "corridor", "mirror_room", "glass_move", "flythrough",
+                                    "ball",  "cornell",  "daylit_room", "daylit_sun", "outdoor_hdri"};
     std::vector<Method> methods{Method::photon, Method::localized, Method::frozen};
     bool pairs = true;
     std::string save_dir;  // empty: nothing written

@@ -2,13 +2,20 @@
 # Runs a benchmark and writes what it printed to docs/results/<BENCHMARK>.md with the machine, the
 # date, the commit and the command, so that figures in the documentation are regenerated, never
 # copied by hand (docs/benchmarks.md). Commit the file with the change it measures.
-#   bash bench/results.sh BENCHMARK [ARGS...]
+#   bash bench/results.sh [--as NAME] BENCHMARK [ARGS...]
 # BENCHMARK is a program of build/ (ray_tracer_bench, quality_bench, ...) or a script
-# bench/BENCHMARK.sh (methods_bench, reuse_bench, farm_bench).
+# bench/BENCHMARK.sh (methods_bench, reuse_bench, farm_bench). --as writes docs/results/<NAME>.md
+# instead: the figures of one run of a benchmark over part of its work, kept beside the full run's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-name=${1:?usage: bash bench/results.sh BENCHMARK [ARGS...]}
+file_name=
+if [ "${1:-}" = --as ]; then
+  file_name=${2:?usage: bash bench/results.sh [--as NAME] BENCHMARK [ARGS...]}
+  shift 2
+fi
+name=${1:?usage: bash bench/results.sh [--as NAME] BENCHMARK [ARGS...]}
 shift
+file_name=${file_name:-$name}
 if [ -f "bench/$name.sh" ]; then
   command=(bash "bench/$name.sh" "$@")
 elif [ -f "bench/$name.cpp" ]; then
@@ -27,11 +34,13 @@ trap 'rm -f "$output"' EXIT
 "${command[@]}" | tee "$output"
 sed -i 's/\x1b\[[0-9;]*m//g' "$output"  # terminal colours (Google Benchmark's) left out of the file
 mkdir -p docs/results
-file=docs/results/$name.md
+file=docs/results/$file_name.md
+as=
+[ "$file_name" = "$name" ] || as="--as $file_name "
 {
-  echo "# $name"
+  echo "# $file_name"
   echo
-  echo "Written by \`bash bench/results.sh $name${*:+ $*}\` (docs/benchmarks.md says what it measures)."
+  echo "Written by \`bash bench/results.sh $as$name${*:+ $*}\` (docs/benchmarks.md says what it measures)."
   echo
   echo "- date: $started"
   echo "- commit: $commit"

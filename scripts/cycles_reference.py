@@ -1,14 +1,16 @@
-"""Renders one frame of the Blender room (scripts/make_blender_scene.py) with Blender's Cycles, as an
-independent check of steadylight's path tracer. Not part of CI: it needs Blender and minutes.
+"""Renders one frame of the Blender room (scripts/make_blender_scene.py), or of a steadylight JSON
+scene (scripts/blender_from_json.py), with Blender's Cycles, as an independent check of
+steadylight's path tracer. Not part of CI: it needs Blender and minutes.
 
 Run headless:
   blender -b --factory-startup --python scripts/cycles_reference.py -- \
       --frame 0 --samples 1024 --out /tmp/cycles_0000.exr [--filter box] [--lambert] [--seed N] \
-      [--scene room|textured] [--size WxH]
+      [--scene room|textured] [--json SCENE.json] [--size WxH]
 
 `--scene textured` renders the textured room of scripts/make_blender_textured_room.py instead
-(no --lambert there: its materials are textured and glossy on purpose); `--size` overrides the
-scene's 320 x 240.
+(no --lambert there: its materials are textured and glossy on purpose); `--json` a steadylight
+JSON scene such as scenes/daylit_room.json, with its world, suns and portals as Blender's
+(scripts/blender_from_json.py says how); `--size` overrides the scene's 320 x 240.
 
 The scene is built afresh by make_blender_scene.build_scene(), the same code that exports
 scenes/blender_room.glb, so both renderers see one scene. Cycles is set up to compute the same
@@ -20,7 +22,7 @@ estimate as steadylight's path tracer:
 - pixel filter: Blender's default, Blackman-Harris 1.5 px wide; `--filter box` gives a 1 px box,
   which is what steadylight uses (it averages jittered samples inside each pixel);
 - view transform Standard, look None, exposure 0, gamma 1 (they do not touch the EXR anyway);
-- a black world (the room is closed, so no ray sees it);
+- a black world (the room is closed, so no ray sees it), or with `--json` the scene's own;
 - output: a linear 32-bit float OpenEXR (RGB), no view transform applied.
 `--lambert` replaces every Principled BSDF by a Diffuse BSDF (roughness 0: Lambert) with the
 same base colour, plus the same emission: Cycles 3.x shades Principled's diffuse lobe with
@@ -34,6 +36,7 @@ import time
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_from_json  # noqa: E402
 import make_blender_scene  # noqa: E402  (Blender runs this file as a script, not a package)
 import make_blender_textured_room  # noqa: E402
 
@@ -51,6 +54,7 @@ def parse_args(argv):
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--threads", type=int, default=0, help="0: Blender's choice (all cores)")
     parser.add_argument("--scene", choices=("room", "textured"), default="room")
+    parser.add_argument("--json", help="a steadylight JSON scene instead of --scene")
     parser.add_argument("--size", help="WxH, instead of the scene's resolution")
     return parser.parse_args(argv[argv.index("--") + 1:] if "--" in argv else [])
 
@@ -116,14 +120,21 @@ def main(argv):
     args = parse_args(argv)
     if args.scene == "textured" and args.lambert:
         sys.exit("--lambert is for the untextured room only")
-    (make_blender_textured_room if args.scene == "textured" else make_blender_scene).build_scene()
+    if args.json and args.lambert:
+        sys.exit("--lambert is for the Blender rooms: a JSON scene's lambert materials are Diffuse BSDFs already")
+    size = [int(v) for v in args.size.split("x")] if args.size else None
+    if args.json:
+        blender_from_json.build_scene(args.json, args.frame, size)
+    else:
+        (make_blender_textured_room if args.scene == "textured" else make_blender_scene).build_scene()
     scene = bpy.context.scene
-    if args.size:
-        scene.render.resolution_x, scene.render.resolution_y = (int(v) for v in args.size.split("x"))
+    if size:
+        scene.render.resolution_x, scene.render.resolution_y = size
     if args.lambert:
         for material in bpy.data.materials:
             use_lambert(material)
-    black_world(scene)
+    if not args.json:
+        black_world(scene)
     set_up_cycles(scene, args)
     scene.frame_set(args.frame)
     scene.render.filepath = os.path.abspath(args.out)
@@ -131,7 +142,7 @@ def main(argv):
     start = time.time()
     bpy.ops.render.render(write_still=True)
     print(f"cycles_reference: frame {args.frame}, {args.samples} spp, filter {args.filter}, "
-          f"{'Diffuse BSDF' if args.lambert else 'Principled BSDF'}: {time.time() - start:.1f} s -> {args.out}")
+          f"{args.json or ('Diffuse BSDF' if args.lambert else 'Principled BSDF')}: {time.time() - start:.1f} s -> {args.out}")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the scenes: scenes/ball.json, table.json and cornell.json, and the truth suite's
-corridor.json, mirror_room.json, flythrough.json, glass_move.json and switch_room.json
-(docs/truth-suite.md).
+corridor.json, mirror_room.json, flythrough.json, glass_move.json, switch_room.json,
+daylit_room.json, daylit_sun.json and outdoor_hdri.json (docs/truth-suite.md), and
+daylit_glazed.json, the daylit room behind a pane of glass, which the suite measures apart.
 
 BALL and TABLE follow docs/test-scenes.md exactly; their keyframes (one per
 frame, linear in between) are computed here. The JSON files are committed too, so the renderer
@@ -231,6 +232,72 @@ def switch_room_scene():
             "materials": cornell_materials(), "objects": objects, "lights": lights}
 
 
+def daylit_room_objects():
+    """BALL's room closed on every side, with a window 2.5 m wide and 2 m high in the green wall
+    (x = 5.5) and its tall box; a blue ball bounces along the room through the sunbeam."""
+    walls = room(5.5, 5.5, 5.5, closed_front=True)
+    objects = [{"name": name, "shape": walls[name], "material": material}
+               for name, material in [("floor", "white"), ("ceiling", "white"), ("back", "white"),
+                                      ("front", "white"), ("left", "red")]]
+    green = [("right_below_window", quad([5.5, 0, 0], [0, 0, 5.5], [0, 2, 0])),
+             ("right_above_window", quad([5.5, 4, 0], [0, 0, 5.5], [0, 1.5, 0])),
+             ("right_before_window", quad([5.5, 2, 0], [0, 0, 1.5], [0, 2, 0])),
+             ("right_behind_window", quad([5.5, 2, 4], [0, 0, 1.5], [0, 2, 0]))]
+    objects += [{"name": name, "shape": shape, "material": "green"} for name, shape in green]
+    objects.append({"name": "tall_box", "shape": box([0, 0, 0], [1.65, 3.3, 1.65]), "material": "white",
+                    "transform": {"translation": [1.85, 1.65, 3.7], "rotation": {"axis": [0, 1, 0], "degrees": 17}}})
+    # Two bounces over the animation: keys every quarter second, the last at its last frame.
+    objects.append({"name": "ball", "shape": {"type": "sphere", "radius": 0.45}, "material": "blue",
+                    "animation": {"translation": {
+                        "interpolation": "linear", "times": [0, 0.25, 0.5, 0.75, round((SUITE_FRAMES - 1) / FPS, 6)],
+                        "values": [[4.5, 0.45, 2.6], [3.6, 1.9, 2.6], [2.75, 0.45, 2.6], [1.9, 1.9, 2.6],
+                                   [1.0, 0.45, 2.6]]}}})
+    return objects
+
+
+DAYLIT_WINDOW = {"corner": [5.5, 2, 1.5], "edge_u": [0, 0, 2.5], "edge_v": [0, 2, 0]}
+DAYLIT_SUN = {"type": "sun", "name": "sun", "direction": [-1, -0.7, 0.25], "irradiance": [3.6, 3.4, 3.0],
+              "angle_degrees": 0.53}
+
+
+def daylit_scene(name, world, glazed=False):
+    """The daylit room: its only light a sun (and a world, if given) through the window, marked
+    as a portal; the camera inside by the front wall. Glazed: a pane of glass 1 cm thick fills
+    the window, just outside the wall's plane."""
+    objects = daylit_room_objects()
+    materials = cornell_materials()
+    if glazed:
+        objects.append({"name": "pane", "shape": box([5.505, 3, 2.75], [0.01, 2, 2.5]), "material": "glass"})
+        materials["glass"] = {"type": "dielectric", "ior": 1.5}
+    camera = {"position": [2.75, 2.3, 0.25], "look_at": [2.75, 1.7, 5.5], "up": [0, 1, 0], "fov_y": 65,
+              "resolution": [320, 240]}
+    scene = {"name": name, "frames": {"count": SUITE_FRAMES, "fps": FPS}, "camera": camera,
+             "materials": materials, "objects": objects, "lights": [DAYLIT_SUN]}
+    if world:
+        scene["world"] = world
+    scene["portals"] = [DAYLIT_WINDOW]
+    return scene
+
+
+def outdoor_hdri_scene():
+    """Outdoors under Blender's courtyard world (scenes/worlds/courtyard.exr, CC0): a ground of
+    20 m x 20 m, a white block and an ochre column, and a ball rolling across in front of them.
+    The image's light comes mostly from the open sky towards +x: soft shadows falling to -x."""
+    objects = [{"name": "ground", "shape": quad([-10, 0, -10], [0, 0, 20], [20, 0, 0]), "material": "ground"},
+               {"name": "block", "shape": box([0, 0, 0], [0.8, 0.8, 0.8]), "material": "white",
+                "transform": {"translation": [-1.2, 0.4, 1.4], "rotation": {"axis": [0, 1, 0], "degrees": 25}}},
+               {"name": "column", "shape": box([1.3, 0.8, 1.8], [0.5, 1.6, 0.5]), "material": "ochre"}]
+    ts = suite_times()
+    objects.append({"name": "ball", "shape": {"type": "sphere", "center": [0, 0, 0], "radius": 0.35},
+                    "material": "blue", "animation": {"translation": keyframes([[1.8 - 3.6 * t, 0.35, 0.2] for t in ts])}})
+    materials = {"ground": lambert([0.45, 0.42, 0.38]), "white": lambert([0.725, 0.71, 0.68]),
+                 "ochre": lambert([0.65, 0.4, 0.15]), "blue": lambert([0.15, 0.3, 0.8])}
+    camera = {"position": [0, 1.3, -4.0], "look_at": [0, 0.6, 1.0], "up": [0, 1, 0], "fov_y": 50,
+              "resolution": [320, 240]}
+    return {"name": "outdoor_hdri", "frames": {"count": SUITE_FRAMES, "fps": FPS}, "camera": camera,
+            "materials": materials, "objects": objects, "world": {"image": "worlds/courtyard.exr"}}
+
+
 def dumps(scene):
     """Indented JSON with short numeric arrays kept on one line."""
     text = json.dumps(scene, indent=2)
@@ -241,7 +308,12 @@ def main():
     scenes = [("ball", ball_scene()), ("table", table_scene()), ("cornell", cornell_scene()),
               ("corridor", corridor_scene()), ("mirror_room", mirror_room_scene()),
               ("flythrough", flythrough_scene()), ("glass_move", glass_move_scene()),
-              ("switch_room", switch_room_scene())]
+              ("switch_room", switch_room_scene()),
+              ("daylit_room", daylit_scene("daylit_room", {"color": [0.25, 0.35, 0.55], "strength": 1})),
+              ("daylit_sun", daylit_scene("daylit_sun", None)),
+              ("daylit_glazed", daylit_scene("daylit_glazed", {"color": [0.25, 0.35, 0.55], "strength": 1},
+                                             glazed=True)),
+              ("outdoor_hdri", outdoor_hdri_scene())]
     for name, scene in scenes:
         with open(os.path.join(SCENES, name + ".json"), "w") as f:
             f.write(dumps(scene))
