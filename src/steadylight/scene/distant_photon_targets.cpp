@@ -7,6 +7,13 @@
 #include "steadylight/base/sampling.h"
 
 namespace steadylight {
+namespace {
+
+constexpr int direction_bins = 32;  // per side of the octahedral map of travel directions
+constexpr int cells = 32;           // per side of the disc's grid
+constexpr float aimed_share = 0.75f;
+
+}  // namespace
 
 DistantPhotonTargets::DistantPhotonTargets(const BoundingSphere& scene,
                                            const std::vector<std::pair<Vec3, Vec3>>& crossings)
@@ -17,7 +24,8 @@ DistantPhotonTargets::DistantPhotonTargets(const BoundingSphere& scene,
     for (const auto& [d, p] : crossings) {
         const Vec2 xy = plane_coordinates(d, p);
         const float cell_size = 2 * m_radius / cells;
-        const int i = int(std::floor((xy.x + m_radius) / cell_size)), j = int(std::floor((xy.y + m_radius) / cell_size));
+        const int i = int(std::floor((xy.x + m_radius) / cell_size)),
+                  j = int(std::floor((xy.y + m_radius) / cell_size));
         std::vector<uint8_t>& marks = m_marks[size_t(bin_of(d))];
         // The neighbours too: a direction elsewhere in the bin crosses the same opening a little
         // aside.
@@ -66,7 +74,8 @@ DistantPhotonTargets::Start DistantPhotonTargets::sample_start(Vec3 d, Vec2 u) c
         const size_t k = std::min(size_t(scaled), marked.size() - 1);
         const int cell = marked[k];
         const float rest = std::min(scaled - float(k), 0x1.fffffep-1f);
-        xy = {-m_radius + (float(cell % cells) + rest) * cell_size, -m_radius + (float(cell / cells) + u.y) * cell_size};
+        xy = {-m_radius + (float(cell % cells) + rest) * cell_size,
+              -m_radius + (float(cell / cells) + u.y) * cell_size};
     } else {
         const float v = std::min((u.x - aimed) / (1 - aimed), 0x1.fffffep-1f);
         const float r = m_radius * std::sqrt(v), phi = 2 * pi * u.y;
@@ -75,8 +84,7 @@ DistantPhotonTargets::Start DistantPhotonTargets::sample_start(Vec3 d, Vec2 u) c
     const int cell = cell_of(xy);
     const bool in_disc = xy.x * xy.x + xy.y * xy.y <= m_radius * m_radius;
     float pdf = in_disc ? (1 - aimed) / (pi * m_radius * m_radius) : 0.0f;
-    if (cell >= 0 && m_marks[size_t(bin)][size_t(cell)])
-        pdf += aimed / (float(marked.size()) * cell_size * cell_size);
+    if (cell >= 0 && m_marks[size_t(bin)][size_t(cell)]) pdf += aimed / (float(marked.size()) * cell_size * cell_size);
     const OrthonormalBasis basis = OrthonormalBasis::from_normal(d);
     return {m_scene.center - d * (m_radius * 1.01f) + basis.s * xy.x + basis.t * xy.y, pdf};
 }

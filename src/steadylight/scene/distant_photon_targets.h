@@ -5,8 +5,8 @@
 //
 // The targets are found from the camera's side: rays from the surfaces the camera sees that
 // leave the scene show where light from far away comes in and which way it travels. For each
-// travel direction (64 bins, an octahedral map of the sphere), the disc is divided into 32 x 32
-// cells, and the cells such a ray crosses (with their neighbours) are marked. A photon of that
+// travel direction (bins of an octahedral map of the sphere), the disc is divided into cells,
+// and the cells such a ray crosses (with their neighbours) are marked. A photon of that
 // direction then starts in a marked cell three times in four, else anywhere on the disc, and its
 // power divides by the density of both together, so that no light is lost: a photon that could
 // reach the scene from a cell nobody marked still can, only less often. The marks depend on the
@@ -24,10 +24,6 @@ namespace steadylight {
 
 class DistantPhotonTargets {
 public:
-    static constexpr int direction_bins = 8;  // per side of the octahedral map: 64 bins
-    static constexpr int cells = 32;          // per side of the disc's grid
-    static constexpr float aimed_share = 0.75f;
-
     /// The targets that photons travelling d through point p would hit, for each (d, p) of
     /// `crossings` (d unit, the way the light travels), over the disc covering `scene`.
     DistantPhotonTargets(const BoundingSphere& scene, const std::vector<std::pair<Vec3, Vec3>>& crossings);
