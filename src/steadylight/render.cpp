@@ -57,10 +57,19 @@ Scene load_scene(const RenderSettings& settings) {
     if (!has_light(desc))
         spdlog::warn(
             "{}: the scene has no light (no object with an emission, no point or spot light with an "
-            "intensity): every frame renders black",
+            "intensity, no sun, no world): every frame renders black",
             settings.scene_file);
     scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
     scene.set_transparent_background(settings.output.transparent_background);
+    // Photons of light from far away aimed where the camera's view shows it comes in, unless
+    // portals say (scene/distant_photon_targets.h).
+    if (settings.method != Method::path && has_distant_light(desc) && desc.portals.empty()) {
+        const RayTracer tracer(scene, scene.evaluate(0));
+        auto targets = std::make_shared<const DistantPhotonTargets>(aim_distant_photons(scene, tracer));
+        spdlog::info("photons from far away aimed at {} cells where the camera's view shows light coming in",
+                     targets->marked_cells());
+        scene.set_distant_photon_targets(std::move(targets));
+    }
     return scene;
 }
 

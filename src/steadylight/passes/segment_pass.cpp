@@ -78,6 +78,7 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         h.add(portal.corner), h.add(portal.edge_u), h.add(portal.edge_v);
     // Light from far away aims its photons at the animation's bounds.
     if (!scene.desc().suns.empty() || scene.desc().world) h.add(scene.bounds().center), h.add(scene.bounds().radius);
+    if (const DistantPhotonTargets* targets = scene.distant_photon_targets()) h.add(targets->hash());
     for (int frame = segment.first; frame <= segment.last; ++frame) {
         const Camera camera = scene.evaluate(frame).camera;
         h.add(camera.world_from_camera), h.add(camera.tan_half_fov_y), h.add(camera.width), h.add(camera.height);

@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "steadylight/base/parallel.h"
+#include "steadylight/base/rng.h"
+#include "steadylight/base/sampling.h"
 #include "steadylight/photons/photon_tracer.h"
 #include "steadylight/shading/surface_point.h"
 
@@ -35,6 +37,42 @@ bool CameraSeenSides::seen(const Scene& scene, const FrameState& frame, const Ra
     if (scene.object(hit.object).is_dynamic()) return true;
     const SurfacePoint sp = make_surface_point(scene, frame, ray, hit);
     return m_seen.contains(key(hit.object, hit.primitive, dot(sp.ng, ray.d) < 0));
+}
+
+DistantPhotonTargets aim_distant_photons(const Scene& scene, const RayTracer& tracer) {
+    constexpr int columns = 48, rows = 36, max_frames = 16, rays_per_point = 8;
+    const int frames = std::min(scene.frame_count(), max_frames);
+    // Per camera ray, the crossings it found, joined in ray order: the same for any threads.
+    std::vector<std::vector<std::pair<Vec3, Vec3>>> found(size_t(frames) * rows * columns);
+    parallel_for_chunks(long(found.size()), 256, [&](long begin, long end) {
+        for (long index = begin; index < end; ++index) {
+            const int k = int(index / (rows * columns)), pixel = int(index % (rows * columns));
+            const int frame = frames > 1 ? int(int64_t(k) * (scene.frame_count() - 1) / (frames - 1)) : 0;
+            const FrameState state = scene.evaluate(frame);
+            const Camera& camera = state.camera;
+            const Ray ray = camera.generate_ray((float(pixel % columns) + 0.5f) * float(camera.width) / float(columns),
+                                                (float(pixel / columns) + 0.5f) * float(camera.height) / float(rows));
+            const std::optional<Hit> hit = tracer.intersect(ray, Visibility::static_only);
+            if (!hit) continue;
+            const SurfacePoint sp = make_surface_point(scene, state, ray, *hit);
+            const Vec3 n = dot(sp.ng, ray.d) < 0 ? sp.ng : -sp.ng;  // the side the camera sees
+            const auto leaves = [&](Vec3 w) {
+                return !tracer.intersect(spawn_ray(sp.p, n, w), Visibility::static_only);
+            };
+            Pcg32 rng{uint64_t(index)};
+            const OrthonormalBasis basis = OrthonormalBasis::from_normal(n);
+            for (int r = 0; r < rays_per_point; ++r) {
+                const Vec3 w = basis.to_world(sample_cosine_hemisphere(rng.next_vec2()));
+                if (leaves(w)) found[size_t(index)].emplace_back(-w, sp.p);
+            }
+            for (const SunLightDesc& sun : scene.desc().suns)
+                if (dot(sun.direction, n) < 0 && leaves(-sun.direction))
+                    found[size_t(index)].emplace_back(sun.direction, sp.p);
+        }
+    });
+    std::vector<std::pair<Vec3, Vec3>> crossings;
+    for (const auto& ray : found) crossings.insert(crossings.end(), ray.begin(), ray.end());
+    return DistantPhotonTargets(scene.bounds(), crossings);
 }
 
 std::optional<double> distant_photons_inside(const FrameContext& context, const CameraSeenSides& seen, long paths) {

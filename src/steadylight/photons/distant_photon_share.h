@@ -9,6 +9,9 @@
 // the camera sees). A side is a triangle's (or a sphere's) front or back as the ray meets it, so
 // the outer face of a wall is not its inner face. Small triangles between the grid's rays can be
 // missed: the share is an estimate, good for telling aimed photons from wasted ones.
+//
+// The same view of the camera aims the photons when the scene has no portals
+// (aim_distant_photons).
 #pragma once
 
 #include <cstdint>
@@ -33,6 +36,12 @@ private:
     static uint64_t key(int object, int primitive, bool front);
     std::unordered_set<uint64_t> m_seen;
 };
+
+/// Where photons of light from far away should go (scene/distant_photon_targets.h): from the
+/// static surfaces a grid of camera rays sees at frames spread over the animation, rays in
+/// cosine-weighted directions and towards each sun; those that leave the scene mark where light
+/// from that way comes in.
+DistantPhotonTargets aim_distant_photons(const Scene& scene, const RayTracer& tracer);
 
 /// The share of `paths` photon paths from the context's lights from far away whose first hit is
 /// a side `seen` holds (in [0, 1]); nothing when the frame has no light from far away.

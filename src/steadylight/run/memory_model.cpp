@@ -18,6 +18,7 @@ constexpr double fixed_bytes = 64e6;
 constexpr double bytes_per_triangle = 160;
 constexpr double bytes_per_pixel_photon_methods = 250;
 constexpr double bytes_per_pixel_path = 60;
+constexpr double bytes_per_pixel_alpha = 12;  // the alpha image of --transparent-background
 constexpr double bytes_per_photon_path = 300;
 
 /// A limit in bytes from a file holding one number ("max" or a huge value: none).
@@ -56,8 +57,9 @@ MemoryEstimate estimate_memory(const RenderSettings& settings, const Scene& scen
     need.scene = bytes_per_triangle * double(triangle_count(scene.desc()));
     const Camera& camera = scene.evaluate(0).camera;
     const bool path = settings.method == Method::path;
-    need.pixels =
-        double(camera.width) * double(camera.height) * (path ? bytes_per_pixel_path : bytes_per_pixel_photon_methods);
+    need.pixels = double(camera.width) * double(camera.height) *
+                  ((path ? bytes_per_pixel_path : bytes_per_pixel_photon_methods) +
+                   (settings.output.transparent_background ? bytes_per_pixel_alpha : 0));
     if (!path)
         need.photons = bytes_per_photon_path * (double(settings.photon.photons.global_photons) +
                                                 double(settings.photon.photons.caustic_photons));

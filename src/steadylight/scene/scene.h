@@ -4,11 +4,13 @@
 // nothing of Embree; trace/ builds acceleration structures from it.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
 #include "steadylight/base/ray.h"
+#include "steadylight/scene/distant_photon_targets.h"
 #include "steadylight/scene/scene_desc.h"
 
 namespace steadylight {
@@ -76,6 +78,13 @@ public:
     /// (a sun, the world) is aimed at. One for the whole animation, so that photons from far
     /// away start the same way in every frame (the static and dynamic photon paths agree).
     const BoundingSphere& bounds() const { return m_bounds; }
+    /// Where photons of light from far away are aimed when the scene has no portals (found from
+    /// the camera's view before rendering: photons/distant_photon_share.h), or null: the whole
+    /// disc covering bounds().
+    const DistantPhotonTargets* distant_photon_targets() const { return m_distant_targets.get(); }
+    void set_distant_photon_targets(std::shared_ptr<const DistantPhotonTargets> targets) {
+        m_distant_targets = std::move(targets);
+    }
 
 private:
     SceneDesc m_desc;
@@ -83,6 +92,7 @@ private:
     std::vector<int> m_dynamic;
     std::vector<Segment> m_segments;
     BoundingSphere m_bounds;
+    std::shared_ptr<const DistantPhotonTargets> m_distant_targets;
 };
 
 }  // namespace steadylight

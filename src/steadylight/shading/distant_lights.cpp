@@ -25,15 +25,18 @@ Vec3 point_on_disc(Vec3 center, Vec3 axis, float radius, Vec2 u) {
     return center + OrthonormalBasis::from_normal(axis).to_world({r * std::cos(phi), r * std::sin(phi), 0});
 }
 
-/// Where a photon of direction `d` (travelling) starts: on the disc that covers `scene`, facing
-/// the light, just outside the scene's sphere. Its pdf is 1 / disc_area(scene).
-Vec3 distant_photon_origin(const BoundingSphere& scene, Vec3 d, Vec2 u) {
-    const float radius = std::max(scene.radius, 1e-3f);
-    return point_on_disc(scene.center - d * (radius * 1.01f), d, radius, u);
-}
-
 float disc_area(const BoundingSphere& scene) {
     return pi * std::max(scene.radius, 1e-3f) * std::max(scene.radius, 1e-3f);
+}
+
+/// Where a photon of direction `d` (travelling) starts: on the disc that covers `scene`, facing
+/// the light, just outside the scene's sphere, where `targets` aims it when there are some; and
+/// the density of that start by area (1 / disc_area(scene) without targets).
+DistantPhotonTargets::Start distant_photon_start(const BoundingSphere& scene, const DistantPhotonTargets* targets,
+                                                 Vec3 d, Vec2 u) {
+    if (targets) return targets->sample_start(d, u);
+    const float radius = std::max(scene.radius, 1e-3f);
+    return {point_on_disc(scene.center - d * (radius * 1.01f), d, radius, u), 1 / disc_area(scene)};
 }
 
 /// A point far along `wi` from `ref`, beyond the scene, for code that wants a light's position.
@@ -154,14 +157,16 @@ Vec3 origin_outside(const BoundingSphere& scene, Vec3 p, Vec3 d) {
 
 class SunLight final : public Light {
 public:
-    SunLight(const SunLightDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals)
+    SunLight(const SunLightDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals,
+             const DistantPhotonTargets* targets)
         : m_to_sun(-normalize(desc.direction)),
           m_irradiance(desc.irradiance),
           m_cos_max(std::cos(desc.angle_deg * pi / 360)),
           m_delta(desc.angle_deg <= 0 || m_cos_max >= 1),
           m_radiance(m_delta ? Rgb{} : desc.irradiance * uniform_cone_pdf(m_cos_max)),
           m_scene(scene),
-          m_portals(portals) {}
+          m_portals(portals),
+          m_targets(targets) {}
 
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3) const override {
         LightSample s;
@@ -203,9 +208,11 @@ public:
             s.power = entry ? m_irradiance * entry->projected_area : Rgb{};
             return s;
         }
-        s.p = distant_photon_origin(m_scene, s.d, u_position);
-        // L / (pdf_direction pdf_position) = (E / Ω) Ω A: the irradiance over the disc.
-        s.power = m_irradiance * disc_area(m_scene);
+        const DistantPhotonTargets::Start start = distant_photon_start(m_scene, m_targets, s.d, u_position);
+        s.p = start.p;
+        // L / (pdf_direction pdf_position) = (E / Ω) Ω / pdf_position: the irradiance over the
+        // disc's density (its area, without targets).
+        s.power = start.pdf > 0 ? m_irradiance / start.pdf : Rgb{};
         return s;
     }
 
@@ -226,15 +233,18 @@ private:
     Rgb m_radiance;  // over the disc, when it has one
     BoundingSphere m_scene;
     Portals m_portals;
+    const DistantPhotonTargets* m_targets;
 };
 
 class WorldLight final : public Light {
 public:
-    WorldLight(const WorldDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals)
+    WorldLight(const WorldDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals,
+               const DistantPhotonTargets* targets)
         : m_map(desc.radiance),
           m_cosine_share(m_map->is_uniform() ? 0.75f : 0.25f),
           m_scene(scene),
-          m_portals(portals) {}
+          m_portals(portals),
+          m_targets(targets) {}
 
     /// Facing a normal: cosine-weighted about it with probability m_cosine_share, else by the
     /// map (uniform over the sphere for a uniform colour; by luminance times solid angle for an
@@ -292,8 +302,9 @@ public:
         if (!sample || !(sample->pdf > 0)) return std::nullopt;
         EmissionSample s;
         s.d = -sample->w;
-        s.p = distant_photon_origin(m_scene, s.d, u_position);
-        s.power = sample->radiance * (disc_area(m_scene) / sample->pdf);
+        const DistantPhotonTargets::Start start = distant_photon_start(m_scene, m_targets, s.d, u_position);
+        s.p = start.p;
+        s.power = start.pdf > 0 ? sample->radiance / (sample->pdf * start.pdf) : Rgb{};
         return s;
     }
 
@@ -343,18 +354,19 @@ private:
     float m_cosine_share;
     BoundingSphere m_scene;
     Portals m_portals;
+    const DistantPhotonTargets* m_targets;
 };
 
 }  // namespace
 
 std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene,
-                                      const std::vector<PortalDesc>& portals) {
-    return std::make_unique<SunLight>(desc, scene, portals);
+                                      const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets) {
+    return std::make_unique<SunLight>(desc, scene, portals, targets);
 }
 
 std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene,
-                                        const std::vector<PortalDesc>& portals) {
-    return std::make_unique<WorldLight>(desc, scene, portals);
+                                        const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets) {
+    return std::make_unique<WorldLight>(desc, scene, portals, targets);
 }
 
 }  // namespace steadylight

@@ -84,10 +84,11 @@ std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& fra
 std::unique_ptr<Light> make_point_light(const PointLightDesc& desc, Rgb intensity);
 /// A sun, and the world, whose photons cover `scene` (Scene::bounds()), or enter through
 /// `portals` when there are any.
+/// Without portals, `targets` (when not null) aims them (scene/distant_photon_targets.h).
 std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene,
-                                      const std::vector<PortalDesc>& portals);
+                                      const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets);
 std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene,
-                                        const std::vector<PortalDesc>& portals);
+                                        const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets);
 
 /// The shadow ray from surface point `p` (geometric normal `ng`) towards a sampled light: to its
 /// point, or open-ended towards a light from far away.

@@ -43,9 +43,12 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_obj
             m_lights.push_back(make_point_light(scene.desc().point_lights[i], frame.point_light_intensity[i]));
     m_first_distant = m_lights.size();
     for (const SunLightDesc& sun : scene.desc().suns)
-        if (!is_black(sun.irradiance)) m_lights.push_back(make_sun_light(sun, scene.bounds(), scene.desc().portals));
+        if (!is_black(sun.irradiance))
+            m_lights.push_back(
+                make_sun_light(sun, scene.bounds(), scene.desc().portals, scene.distant_photon_targets()));
     if (scene.desc().world && !scene.desc().world->radiance->is_black())
-        m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds(), scene.desc().portals));
+        m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds(), scene.desc().portals,
+                                            scene.distant_photon_targets()));
 
     // Choose lights in proportion to power; uniformly if none has any.
     float total = 0;
