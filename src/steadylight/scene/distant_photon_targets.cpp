@@ -13,7 +13,59 @@ constexpr int direction_bins = 32;  // per side of the octahedral map of travel 
 constexpr int cells = 32;           // per side of the disc's grid
 constexpr float aimed_share = 0.75f;
 
+/// Where unit `d` falls on the octahedral map, a square [-1, 1]^2: the octahedron |x|+|y|+|z| = 1
+/// seen from above, its lower half folded out over the corners.
+Vec2 octahedral_square(Vec3 d) {
+    const float sum = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+    const float x = d.x / sum, y = d.y / sum;
+    if (d.z >= 0) return {x, y};
+    return {(1 - std::abs(y)) * std::copysign(1.0f, x), (1 - std::abs(x)) * std::copysign(1.0f, y)};
+}
+
+/// The unit direction at a point of the square: octahedral_square's inverse.
+Vec3 octahedral_direction(Vec2 q) {
+    const float z = 1 - std::abs(q.x) - std::abs(q.y);
+    Vec3 p{q.x, q.y, z};
+    if (z < 0) {
+        p.x = (1 - std::abs(q.y)) * std::copysign(1.0f, q.x);
+        p.y = (1 - std::abs(q.x)) * std::copysign(1.0f, q.y);
+    }
+    return normalize(p);
+}
+
+/// Solid angle per area of the square at unit `d`: the octahedron's point d / |d|_1, at distance
+/// 1 / |d|_1 with its face's normal at cos 1 / (√3 |p|) to it, seen through a face tilted by
+/// 1 / √3 to the square, gives dω = |d|_1^3 dA.
+float solid_angle_per_area(Vec3 d) {
+    const float sum = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+    return sum * sum * sum;
+}
+
+int bin_of(Vec3 d) {
+    const Vec2 q = octahedral_square(d);
+    const int i = std::clamp(int((q.x + 1) * 0.5f * direction_bins), 0, direction_bins - 1);
+    const int j = std::clamp(int((q.y + 1) * 0.5f * direction_bins), 0, direction_bins - 1);
+    return j * direction_bins + i;
+}
+
+/// The area of a bin's square on the map (the map is 2 x 2).
+constexpr float bin_area = 4.0f / float(direction_bins * direction_bins);
+
 }  // namespace
+
+AimedDirections::Sample AimedDirections::sample(Vec2 u) const {
+    const Distribution1D::Sample bin = m_bins.sample(u.x);
+    const float size = 2.0f / direction_bins;
+    const Vec2 q{-1 + (float(bin.index % direction_bins) + u.y) * size,
+                 -1 + (float(bin.index / direction_bins) + (bin.x * float(m_bins.size()) - float(bin.index))) * size};
+    const Vec3 d = octahedral_direction(q);
+    return {d, pdf(d)};
+}
+
+float AimedDirections::pdf(Vec3 d) const {
+    const float bin_probability = m_bins.cell_pdf(bin_of(d)) / float(m_bins.size());
+    return bin_probability / (bin_area * solid_angle_per_area(d));
+}
 
 DistantPhotonTargets::DistantPhotonTargets(const BoundingSphere& scene,
                                            const std::vector<std::pair<Vec3, Vec3>>& crossings)
@@ -37,19 +89,6 @@ DistantPhotonTargets::DistantPhotonTargets(const BoundingSphere& scene,
     for (size_t bin = 0; bin < m_marks.size(); ++bin)
         for (int cell = 0; cell < cells * cells; ++cell)
             if (m_marks[bin][size_t(cell)]) m_marked[bin].push_back(cell);
-}
-
-int DistantPhotonTargets::bin_of(Vec3 d) const {
-    const float sum = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
-    float x = d.x / sum, y = d.y / sum;
-    if (d.z < 0) {
-        const float folded_x = (1 - std::abs(y)) * std::copysign(1.0f, x);
-        y = (1 - std::abs(x)) * std::copysign(1.0f, y);
-        x = folded_x;
-    }
-    const int i = std::clamp(int((x + 1) * 0.5f * direction_bins), 0, direction_bins - 1);
-    const int j = std::clamp(int((y + 1) * 0.5f * direction_bins), 0, direction_bins - 1);
-    return j * direction_bins + i;
 }
 
 Vec2 DistantPhotonTargets::plane_coordinates(Vec3 d, Vec3 p) const {
@@ -87,6 +126,32 @@ DistantPhotonTargets::Start DistantPhotonTargets::sample_start(Vec3 d, Vec2 u) c
     if (cell >= 0 && m_marks[size_t(bin)][size_t(cell)]) pdf += aimed / (float(marked.size()) * cell_size * cell_size);
     const OrthonormalBasis basis = OrthonormalBasis::from_normal(d);
     return {m_scene.center - d * (m_radius * 1.01f) + basis.s * xy.x + basis.t * xy.y, pdf};
+}
+
+std::optional<AimedDirections> DistantPhotonTargets::aimed_directions(
+    const std::function<float(Vec3)>& luminance) const {
+    // A bin's light: its luminance integrated over the bin's solid angle, from a grid of
+    // directions in it (an image's small bright sun may fall between them: the light's own
+    // sampling keeps it).
+    constexpr int grid = 6;
+    const float size = 2.0f / direction_bins;
+    std::vector<float> weights(m_marked.size(), 0.0f);
+    bool any = false;
+    for (size_t bin = 0; bin < m_marked.size(); ++bin) {
+        if (m_marked[bin].empty()) continue;
+        double light = 0;
+        for (int b = 0; b < grid; ++b)
+            for (int a = 0; a < grid; ++a) {
+                const Vec2 q{-1 + (float(bin % direction_bins) + (float(a) + 0.5f) / grid) * size,
+                             -1 + (float(bin / direction_bins) + (float(b) + 0.5f) / grid) * size};
+                const Vec3 d = octahedral_direction(q);
+                light += double(luminance(d)) * solid_angle_per_area(d);
+            }
+        weights[bin] = float(light / (grid * grid) * bin_area * double(m_marked[bin].size()));
+        any = any || weights[bin] > 0;
+    }
+    if (!any) return std::nullopt;
+    return AimedDirections(Distribution1D(std::move(weights)));
 }
 
 size_t DistantPhotonTargets::marked_cells() const {

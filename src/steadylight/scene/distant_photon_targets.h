@@ -9,18 +9,42 @@
 // and the cells such a ray crosses (with their neighbours) are marked. A photon of that
 // direction then starts in a marked cell three times in four, else anywhere on the disc, and its
 // power divides by the density of both together, so that no light is lost: a photon that could
-// reach the scene from a cell nobody marked still can, only less often. The marks depend on the
-// scene and the camera alone (fixed rays, no thread order), so every process finds the same.
+// reach the scene from a cell nobody marked still can, only less often. A light that chooses its
+// photons' directions (the world) may also take them from the marked bins (AimedDirections). The
+// marks depend on the scene and the camera alone (fixed rays, no thread order), so every process
+// finds the same.
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
+#include "steadylight/base/distribution_2d.h"
 #include "steadylight/base/vec.h"
 
 namespace steadylight {
+
+/// Travel directions for the photons of a light that may choose them (the world, whose image
+/// may be brightest where no opening looks): a direction bin with marks in proportion to the
+/// light its marked cells let in, then uniformly over the bin's square of the octahedral map.
+class AimedDirections {
+public:
+    struct Sample {
+        Vec3 d;         // unit, the way the photon travels
+        float pdf = 0;  // by solid angle
+    };
+    Sample sample(Vec2 u) const;
+    /// The density by solid angle of travelling unit `d`: zero in a bin without marks.
+    float pdf(Vec3 d) const;
+
+private:
+    friend class DistantPhotonTargets;
+    explicit AimedDirections(Distribution1D bins) : m_bins(std::move(bins)) {}
+    Distribution1D m_bins;  // over the octahedral map's bins, row-major
+};
 
 class DistantPhotonTargets {
 public:
@@ -36,12 +60,16 @@ public:
     };
     Start sample_start(Vec3 d, Vec2 u) const;
 
+    /// Directions for photons that travelling d carry light of luminance `luminance(d)`: the
+    /// marked bins, each in proportion to its light times its marked cells; none without marks
+    /// (or where the light is black in every marked bin).
+    std::optional<AimedDirections> aimed_directions(const std::function<float(Vec3)>& luminance) const;
+
     /// Cells marked over all bins (for logs and tests).
     size_t marked_cells() const;
     uint64_t hash() const;
 
 private:
-    int bin_of(Vec3 d) const;
     /// Coordinates of p in the disc's plane for direction d, about the scene's centre.
     Vec2 plane_coordinates(Vec3 d, Vec3 p) const;
     int cell_of(Vec2 xy) const;  // -1 outside the grid

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "steadylight/base/rng.h"
+#include "steadylight/base/sampling.h"
 
 namespace steadylight {
 namespace {
@@ -56,6 +57,46 @@ TEST(DistantPhotonTargets, AimedPhotonsCarryTheSameLightWhereverTheyGo) {
             EXPECT_GT(aimed_count, 5 * spread_count);
         else
             EXPECT_GT(aimed_count, 0);
+    }
+}
+
+// Directions aimed at the marked bins: each sample's pdf is the density pdf() gives, and the
+// density integrates to one: Σ 1/pdf over samples estimates the solid angle of the bins it
+// covers, which uniform directions on the sphere measure too. Bins without light get nothing.
+TEST(DistantPhotonTargets, AimedDirectionsHaveTheDensityTheySay) {
+    std::vector<std::pair<Vec3, Vec3>> crossings;
+    Pcg32 marks(2);
+    for (int i = 0; i < 4000; ++i) {
+        // Out up a diagonal (the octahedral map's bins are smallest there by solid angle), and down.
+        const Vec3 out = i % 2 ? normalize(Vec3{1, 0.8f + 0.6f * marks.next_float(), 0.4f + 0.6f * marks.next_float()})
+                               : normalize(Vec3{0.3f * marks.next_float(), 0.3f * marks.next_float(), -1});
+        crossings.emplace_back(-out, Vec3{1.5f, 0.5f, 0});
+    }
+    const DistantPhotonTargets targets(scene, crossings);
+    EXPECT_FALSE(DistantPhotonTargets(scene, {}).aimed_directions([](Vec3) { return 1.0f; }));
+    EXPECT_FALSE(targets.aimed_directions([](Vec3) { return 0.0f; }));
+    for (const bool dark_below : {false, true}) {
+        // Photons travelling up come from below.
+        const std::optional<AimedDirections> aimed =
+            targets.aimed_directions([&](Vec3 d) { return dark_below && d.z > 0 ? 0.0f : 1.0f; });
+        ASSERT_TRUE(aimed);
+        Pcg32 rng(5);
+        const int n = 400000;
+        double covered = 0, measured = 0;
+        int up = 0;
+        for (int i = 0; i < n; ++i) {
+            const AimedDirections::Sample s = aimed->sample(rng.next_vec2());
+            ASSERT_GT(s.pdf, 0);
+            EXPECT_NEAR(aimed->pdf(s.d), s.pdf, 1e-4f * s.pdf);
+            covered += 1 / s.pdf / n;
+            up += s.d.z > 0;
+            measured += aimed->pdf(sample_uniform_sphere(rng.next_vec2())) > 0 ? 4 * pi / n : 0;
+        }
+        EXPECT_NEAR(covered, measured, 0.02 * measured) << dark_below;
+        if (dark_below)
+            EXPECT_EQ(up, 0);
+        else
+            EXPECT_GT(up, n / 10);
     }
 }
 

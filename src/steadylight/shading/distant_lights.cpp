@@ -244,7 +244,10 @@ public:
           m_cosine_share(m_map->is_uniform() ? 0.75f : 0.25f),
           m_scene(scene),
           m_portals(portals),
-          m_targets(targets) {}
+          m_targets(targets) {
+        if (m_targets && m_portals.empty())
+            m_aimed = m_targets->aimed_directions([this](Vec3 d) { return luminance(m_map->radiance(-d)); });
+    }
 
     /// Facing a normal: cosine-weighted about it with probability m_cosine_share, else by the
     /// map (uniform over the sphere for a uniform colour; by luminance times solid angle for an
@@ -296,15 +299,25 @@ public:
         return m_map->mean_luminance() * (m_map->is_uniform() ? pi : 4 * pi);
     }
 
+    /// A direction by the map, or (half of the time, where the targets found openings) by the
+    /// directions that reach what the camera sees; a start on the disc, aimed by the targets.
     std::optional<EmissionSample> sample_emission(Vec2 u_position, Vec2 u_direction) const override {
         if (!m_portals.empty()) return sample_emission_through_portals(u_position, u_direction);
-        const std::optional<EnvironmentMap::Sample> sample = m_map->sample(u_direction);
-        if (!sample || !(sample->pdf > 0)) return std::nullopt;
+        const float aimed_share = m_aimed ? 0.5f : 0.0f;
         EmissionSample s;
-        s.d = -sample->w;
+        if (u_direction.x < aimed_share) {
+            s.d = m_aimed->sample({u_direction.x / aimed_share, u_direction.y}).d;
+        } else {
+            const float rest = std::min((u_direction.x - aimed_share) / (1 - aimed_share), 0x1.fffffep-1f);
+            const std::optional<EnvironmentMap::Sample> sample = m_map->sample({rest, u_direction.y});
+            if (!sample) return std::nullopt;
+            s.d = -sample->w;
+        }
+        const float pdf = (1 - aimed_share) * m_map->pdf(-s.d) + (m_aimed ? aimed_share * m_aimed->pdf(s.d) : 0.0f);
+        if (!(pdf > 0)) return std::nullopt;
         const DistantPhotonTargets::Start start = distant_photon_start(m_scene, m_targets, s.d, u_position);
         s.p = start.p;
-        s.power = start.pdf > 0 ? sample->radiance / (sample->pdf * start.pdf) : Rgb{};
+        s.power = start.pdf > 0 ? m_map->radiance(-s.d) / (pdf * start.pdf) : Rgb{};
         return s;
     }
 
@@ -355,6 +368,7 @@ private:
     BoundingSphere m_scene;
     Portals m_portals;
     const DistantPhotonTargets* m_targets;
+    std::optional<AimedDirections> m_aimed;  // without portals, where the targets found openings
 };
 
 }  // namespace

@@ -159,6 +159,60 @@ TEST(DistantLights, PhotonsOfAnImageWorldCarryItsMeanRadiance) {
     EXPECT_NEAR(power / n, expected, 0.01 * expected);
 }
 
+// Without portals, photons of the world are aimed at the openings the camera looks out of:
+// their directions half of the time, their starts three times in four. Through any region they
+// carry the light that crosses it: L Ω π r² into a sphere of radius r from a cone of solid angle
+// Ω, whether the cone's directions or the sphere were aimed at or not.
+TEST(DistantLights, PhotonsOfTheWorldAimedAtOpeningsCarryTheLightThatCrossesAnyRegion) {
+    const WorldDesc world = WorldDesc::uniform({1, 1, 1});
+    Scene scene(DistantLit::describe({}, world));
+    const Vec3 opening{1.5f, 0.5f, 0}, elsewhere{-1.5f, 0.5f, 0.5f};
+    // Rays from inside leave through the opening upwards, in a cone about a diagonal (where the
+    // octahedral map's bins are smallest by solid angle).
+    const Vec3 out_axis = normalize(Vec3{1, 1.1f, 0.7f});
+    std::vector<std::pair<Vec3, Vec3>> crossings;
+    Pcg32 marks(2);
+    for (int i = 0; i < 4000; ++i) {
+        const Vec3 out = normalize(Vec3{1, 0.8f + 0.6f * marks.next_float(), 0.4f + 0.6f * marks.next_float()});
+        crossings.emplace_back(-out,
+                               opening + Vec3{0, 0.2f * marks.next_float() - 0.1f, 0.2f * marks.next_float() - 0.1f});
+    }
+    scene.set_distant_photon_targets(std::make_shared<const DistantPhotonTargets>(scene.bounds(), crossings));
+    const FrameState frame = scene.evaluate(0);
+    const LightSet aimed(scene, frame);
+    const DistantLit spread({}, world);
+
+    // The power of photons crossing the sphere about `centre` (radius `radius`) that come from
+    // within `cos_cone` of out_axis, over the sphere's cross-section, and how many.
+    const auto through = [&](const LightSet& lights, Vec3 centre, float radius, float cos_cone) {
+        Pcg32 rng(9);
+        double power = 0;
+        int count = 0;
+        const int n = 1000000;
+        for (int i = 0; i < n; ++i) {
+            const std::optional<EmissionSample> e =
+                lights.sample_emission(rng.next_float(), rng.next_vec2(), rng.next_vec2());
+            if (!e || dot(-e->d, out_axis) < cos_cone) continue;
+            const Vec3 to_centre = centre - e->p;
+            if (length(to_centre - e->d * dot(to_centre, e->d)) > radius) continue;
+            power += luminance(e->power);
+            ++count;
+        }
+        return std::pair{power / n / (pi * radius * radius), count};
+    };
+    // The sphere aimed at gets 20,000 photons from the cone (a cone inside the directions
+    // aimed at), the other one (larger, as only a quarter of the photons start anywhere) about
+    // 200: 3% and 10% are about three standard deviations.
+    const float cos_cone = std::cos(5 * pi / 180);
+    const double cone = 2 * pi * (1 - cos_cone), all = 4 * pi;
+    const auto [aimed_power, aimed_count] = through(aimed, opening, 0.3f, cos_cone);
+    EXPECT_NEAR(aimed_power, cone, 0.03 * cone);
+    EXPECT_GT(aimed_count, 20 * through(spread.lights, opening, 0.3f, cos_cone).second);
+    EXPECT_NEAR(through(aimed, elsewhere, 0.8f, cos_cone).first, cone, 0.10 * cone);
+    EXPECT_NEAR(through(aimed, opening, 0.3f, -1).first, all, 0.03 * all);
+    EXPECT_NEAR(through(aimed, elsewhere, 0.8f, -1).first, all, 0.03 * all);
+}
+
 /// A window: 2 x 1 in the plane x = 1, facing -x (into the room at x < 1), y in [0.5, 1.5].
 const PortalDesc window{.corner = {1, 0.5f, -1}, .edge_u = {0, 0, 2}, .edge_v = {0, 1, 0}};
 
