@@ -32,13 +32,6 @@
 namespace steadylight {
 namespace {
 
-/// True when the scene has a sun or a world that sends light.
-bool has_distant_light(const SceneDesc& desc) {
-    return std::any_of(desc.suns.begin(), desc.suns.end(),
-                       [](const SunLightDesc& sun) { return !is_black(sun.irradiance); }) ||
-           (desc.world && !desc.world->radiance->is_black());
-}
-
 /// True when something in the scene emits light: an emitting object, a point or spot light, a
 /// sun or the world.
 bool has_light(const SceneDesc& desc) {
@@ -63,13 +56,10 @@ Scene load_scene(const RenderSettings& settings) {
     scene.set_transparent_background(settings.output.transparent_background);
     // Photons of light from far away aimed where the camera's view shows it comes in, unless
     // portals say (scene/distant_photon_targets.h).
-    if (settings.method != Method::path && has_distant_light(desc) && desc.portals.empty()) {
-        const RayTracer tracer(scene, scene.evaluate(0));
-        auto targets = std::make_shared<const DistantPhotonTargets>(aim_distant_photons(scene, tracer));
-        spdlog::info("photons from far away aimed at {} cells where the camera's view shows light coming in",
-                     targets->marked_cells());
-        scene.set_distant_photon_targets(std::move(targets));
-    }
+    if (settings.method != Method::path)
+        if (const std::optional<size_t> marked = aim_distant_photons(scene))
+            spdlog::info("photons from far away aimed at {} cells where the camera's view shows light coming in",
+                         *marked);
     return scene;
 }
 

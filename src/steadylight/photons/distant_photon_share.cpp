@@ -39,7 +39,9 @@ bool CameraSeenSides::seen(const Scene& scene, const FrameState& frame, const Ra
     return m_seen.contains(key(hit.object, hit.primitive, dot(sp.ng, ray.d) < 0));
 }
 
-DistantPhotonTargets aim_distant_photons(const Scene& scene, const RayTracer& tracer) {
+namespace {
+
+DistantPhotonTargets find_distant_photon_targets(const Scene& scene, const RayTracer& tracer) {
     constexpr int columns = 48, rows = 36, max_frames = 16, rays_per_point = 8;
     const int frames = std::min(scene.frame_count(), max_frames);
     // Per camera ray, the crossings it found, joined in ray order: the same for any threads.
@@ -73,6 +75,17 @@ DistantPhotonTargets aim_distant_photons(const Scene& scene, const RayTracer& tr
     std::vector<std::pair<Vec3, Vec3>> crossings;
     for (const auto& ray : found) crossings.insert(crossings.end(), ray.begin(), ray.end());
     return DistantPhotonTargets(scene.bounds(), crossings);
+}
+
+}  // namespace
+
+std::optional<size_t> aim_distant_photons(Scene& scene) {
+    if (!has_distant_light(scene.desc()) || !scene.desc().portals.empty()) return std::nullopt;
+    const RayTracer tracer(scene, scene.evaluate(0));
+    auto targets = std::make_shared<const DistantPhotonTargets>(find_distant_photon_targets(scene, tracer));
+    const size_t marked = targets->marked_cells();
+    scene.set_distant_photon_targets(std::move(targets));
+    return marked;
 }
 
 std::optional<double> distant_photons_inside(const FrameContext& context, const CameraSeenSides& seen, long paths) {

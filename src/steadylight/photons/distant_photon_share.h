@@ -37,11 +37,12 @@ private:
     std::unordered_set<uint64_t> m_seen;
 };
 
-/// Where photons of light from far away should go (scene/distant_photon_targets.h): from the
-/// static surfaces a grid of camera rays sees at frames spread over the animation, rays in
-/// cosine-weighted directions and towards each sun; those that leave the scene mark where light
-/// from that way comes in.
-DistantPhotonTargets aim_distant_photons(const Scene& scene, const RayTracer& tracer);
+/// Aims the photons of light from far away (scene/distant_photon_targets.h) when the scene has
+/// such light and no portals: from the static surfaces a grid of camera rays sees at frames
+/// spread over the animation, rays in cosine-weighted directions and towards each sun; those that
+/// leave the scene mark where light from that way comes in. The number of cells marked, or
+/// nothing when the scene needs no aiming.
+std::optional<size_t> aim_distant_photons(Scene& scene);
 
 /// The share of `paths` photon paths from the context's lights from far away whose first hit is
 /// a side `seen` holds (in [0, 1]); nothing when the frame has no light from far away.

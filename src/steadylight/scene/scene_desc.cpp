@@ -641,4 +641,10 @@ SceneDesc load_scene_desc(const std::string& path, bool confine_inputs) {
     return desc;
 }
 
+bool has_distant_light(const SceneDesc& desc) {
+    return std::any_of(desc.suns.begin(), desc.suns.end(),
+                       [](const SunLightDesc& sun) { return !is_black(sun.irradiance); }) ||
+           (desc.world && !desc.world->radiance->is_black());
+}
+
 }  // namespace steadylight

@@ -223,4 +223,7 @@ void check_scene_name(const std::string& name, const std::string& where);
 /// well-formed emission and intensity tracks.
 void validate(const SceneDesc& desc);
 
+/// True when the scene has a sun or a world that sends light.
+bool has_distant_light(const SceneDesc& desc);
+
 }  // namespace steadylight
