@@ -182,14 +182,6 @@ bool contains(const std::vector<int>& frames, int frame) {
     return std::find(frames.begin(), frames.end(), frame) != frames.end();
 }
 
-/// The frames of `frames` (sorted) that lie in `segment`.
-std::vector<int> frames_in(const std::vector<int>& frames, const Segment& segment) {
-    std::vector<int> inside;
-    for (const int frame : frames)
-        if (segment.first <= frame && frame <= segment.last) inside.push_back(frame);
-    return inside;
-}
-
 /// One frame: the scene placed there and the method's frame pass. A value that is not finite
 /// leaves as 0, counted in the frame's statistics and reported (output/frame_layers.h).
 RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
