@@ -31,6 +31,7 @@
 #include "steadylight/methods/method.h"
 #include "steadylight/output/image_writer.h"
 #include "steadylight/passes/segment_pass.h"
+#include "steadylight/photons/distant_photon_share.h"
 #include "steadylight/quality/image_error.h"
 
 using namespace steadylight;
@@ -100,7 +101,9 @@ public:
     explicit SceneRenderer(const std::string& name)
         : m_scene(load_scene_desc(source_dir + "/scenes/" + name + ".json")),
           m_tracer(m_scene, m_scene.evaluate(0)),
-          m_bsdfs(make_bsdfs(m_scene)) {}
+          m_bsdfs(make_bsdfs(m_scene)) {
+        aim_distant_photons(m_scene);  // as `steadylight render` does for the photon methods
+    }
 
     const Scene& scene() const { return m_scene; }
 
