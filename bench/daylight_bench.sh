@@ -6,11 +6,13 @@
 # run's wall time, the mean frame time from the frames' statistics and the mean
 # distant_photons_inside; then, per scene, the photon / localized ratio, and the daylit room's
 # localized frame over BALL's. The goals: that frame within 1.5x of BALL's, its ratio at least
-# BALL's. Prints, asserts nothing.
-#   bash bench/daylight_bench.sh [--frames A-B] [--size WxH] [--photons N]   (default: 0-59, 320x240, 200000)
+# BALL's. Last, what the localized frames did on average (from their statistics): photon paths
+# traced again, dynamic photons stored, L_y records, and each phase's seconds, which say where a
+# frame's time goes and how much of the light the moving object changes. Prints, asserts nothing.
+#   bash bench/daylight_bench.sh [--frames A-B] [--size WxH] [--photons N]   (default: 0-29, 320x240, 200000)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-frames=0-59 size=320x240 photons=200000
+frames=0-29 size=320x240 photons=200000
 while [ $# -gt 0 ]; do
   case "$1" in
     --frames) frames=$2; shift 2 ;;
@@ -55,3 +57,16 @@ for scene in ("ball", "daylit_room"):
 print(f"daylit_room / ball, localized frame: {rows[('daylit_room', 'localized')][1] / rows[('ball', 'localized')][1]:.2f}x; "
       f"whole run {rows[('daylit_room', 'localized')][0] / rows[('ball', 'localized')][0]:.2f}x")
 PY
+echo "localized frames, mean per frame:"
+printf '%-12s %9s %9s %8s %8s %8s %8s %8s %8s\n' scene retraced dynamic records photons influence L_y L_t shading
+for scene in ball daylit_room; do
+  python3 - "$scene" "$work/${scene}_localized" <<'PY'
+import glob, json, sys
+scene, folder = sys.argv[1], sys.argv[2]
+stats = [json.load(open(f)) for f in sorted(glob.glob(folder + "/*.stats.json"))]
+mean = lambda get: sum(get(s) for s in stats) / len(stats)
+seconds = [mean(lambda s, k=k: s["seconds"][k]) for k in ("photon_tracing", "influence", "cache", "correction", "shading")]
+print(f"{scene:<12} {mean(lambda s: s['photons']['retraced_paths']):9.0f} {mean(lambda s: s['photons']['dynamic_stored']):9.0f} "
+      f"{mean(lambda s: s['irradiance_records']):8.0f} " + " ".join(f"{t:7.3f}s" for t in seconds))
+PY
+done
