@@ -96,9 +96,9 @@ tinygltf::FsCallbacks input_file_callbacks(const InputFolder& inputs) {
     };
     callbacks.ExpandFilePath = [](const std::string& path, void*) { return path; };
     callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                                 void* inputs) {
+                                 void* folder) {
         try {
-            const std::string bytes = read_input_file(path, *static_cast<const InputFolder*>(inputs));
+            const std::string bytes = read_input_file(path, *static_cast<const InputFolder*>(folder));
             out->assign(bytes.begin(), bytes.end());
             return true;
         } catch (const InputError& e) {
