@@ -69,9 +69,10 @@ constexpr SceneTolerance tolerances[] = {
     {"daylit_room", 0.10, 0.035},
     // The sun alone (one light, no such slice): per pixel 0.083, blocks 0.029, mean 1.000; the path tracer 0.221.
     {"daylit_sun", 0.10, 0.037, 0, 0.02, 0.28},
-    // Blender's courtyard world over an open ground, its photons aimed at what the camera sees: per pixel 0.075,
-    // blocks 0.019-0.020, mean 0.998-1.000.
-    {"outdoor_hdri", 0.10, 0.03},
+    // Blender's courtyard world over an open ground, its photons aimed at what the camera sees: per pixel 0.049,
+    // blocks 0.015-0.016, mean 0.999-1.000; per pixel 0.075 while the world's direct light was sampled by the
+    // image's light alone (most samples went below the ground's horizon).
+    {"outdoor_hdri", 0.07, 0.022},
 };
 
 struct Case {

@@ -30,6 +30,32 @@ double pixel_solid_angle(int j, int width, int height) {
     return 2 * std::acos(-1.0) / width * (std::cos(top) - std::cos(bottom));
 }
 
+/// The side of the facing sampling's cells, in pixels.
+constexpr int facing_cell_size = 16;
+
+/// The fixed normals of the facing sampling: the cube's 6 faces, 12 edges and 8 corners, as
+/// unit vectors.
+const std::vector<Vec3>& facing_normals() {
+    static const std::vector<Vec3> normals = [] {
+        std::vector<Vec3> out;
+        for (int z = -1; z <= 1; ++z)
+            for (int y = -1; y <= 1; ++y)
+                for (int x = -1; x <= 1; ++x)
+                    if (x || y || z) out.push_back(normalize(Vec3{float(x), float(y), float(z)}));
+        return out;
+    }();
+    return normals;
+}
+
+/// The index of the fixed normal nearest unit n.
+int nearest_facing_normal(Vec3 n) {
+    const std::vector<Vec3>& normals = facing_normals();
+    int best = 0;
+    for (int k = 1; k < int(normals.size()); ++k)
+        if (dot(normals[size_t(k)], n) > dot(normals[size_t(best)], n)) best = k;
+    return best;
+}
+
 }  // namespace
 
 EnvironmentMap::EnvironmentMap(Rgb radiance)
@@ -77,6 +103,40 @@ EnvironmentMap::EnvironmentMap(Image image, float strength, float rotation_degre
                 float((luminance(m_image.at(i, j)) + floor) * scale * sin_theta);
     }
     m_distribution = Distribution2D(weights, width, height);
+    build_facing(weights);
+}
+
+int EnvironmentMap::cell_width(int cx) const {
+    return std::min(facing_cell_size, m_image.width - cx * facing_cell_size);
+}
+
+void EnvironmentMap::build_facing(const std::vector<float>& weights) {
+    const int width = m_image.width, height = m_image.height;
+    m_cells_x = (width + facing_cell_size - 1) / facing_cell_size;
+    m_cells_y = (height + facing_cell_size - 1) / facing_cell_size;
+    const std::vector<Vec3>& normals = facing_normals();
+    std::vector<std::vector<float>> facing(normals.size(), std::vector<float>(size_t(m_cells_x * m_cells_y), 0.0f));
+    m_cell_pixels.reserve(size_t(m_cells_x * m_cells_y));
+    for (int cy = 0; cy < m_cells_y; ++cy)
+        for (int cx = 0; cx < m_cells_x; ++cx) {
+            const int x0 = cx * facing_cell_size, y0 = cy * facing_cell_size;
+            const int x1 = x0 + cell_width(cx), y1 = std::min(height, y0 + facing_cell_size);
+            std::vector<float> pixels;
+            pixels.reserve(size_t((x1 - x0) * (y1 - y0)));
+            std::vector<double> sums(normals.size(), 0.0);
+            for (int j = y0; j < y1; ++j)
+                for (int i = x0; i < x1; ++i) {
+                    const float weight = weights[size_t(j) * size_t(width) + size_t(i)];
+                    pixels.push_back(weight);
+                    const Vec3 w = direction_at({(float(i) + 0.5f) / float(width), (float(j) + 0.5f) / float(height)});
+                    for (size_t k = 0; k < normals.size(); ++k)
+                        sums[k] += double(weight) * std::max(0.0f, dot(w, normals[k]));
+                }
+            for (size_t k = 0; k < normals.size(); ++k) facing[k][size_t(cy * m_cells_x + cx)] = float(sums[k]);
+            m_cell_pixels.emplace_back(std::move(pixels));
+        }
+    m_facing.reserve(normals.size());
+    for (std::vector<float>& cells : facing) m_facing.emplace_back(std::move(cells));
 }
 
 EnvironmentMap::ImagePoint EnvironmentMap::image_point(Vec3 w) const {
@@ -106,21 +166,58 @@ float EnvironmentMap::pdf(Vec3 w) const {
 std::optional<EnvironmentMap::Sample> EnvironmentMap::sample(Vec2 u) const {
     if (m_black) return std::nullopt;
     Vec3 w;
-    if (m_image.pixels.empty()) {
+    if (m_image.pixels.empty())
         w = sample_uniform_sphere(u);
-    } else {
-        const Vec2 uv = m_distribution.sample(u).uv;
-        const float theta = pi * uv.y, phi = 2 * pi * (uv.x - 0.5f);
-        const float sin_theta = std::sin(theta);
-        const float x = sin_theta * std::cos(phi), z = sin_theta * std::sin(phi);
-        // Back from the image's frame: the inverse of image_point's rotation.
-        w = {x * m_cos_rotation - z * m_sin_rotation, std::cos(theta), x * m_sin_rotation + z * m_cos_rotation};
-    }
+    else
+        w = direction_at(m_distribution.sample(u).uv);
     // From w itself, so that the sample agrees bit for bit with pdf(w) and radiance(w) (MIS
     // weights computed either way match).
     const float density = pdf(w);
     if (!(density > 0)) return std::nullopt;
     return Sample{w, radiance(w), density};
+}
+
+Vec3 EnvironmentMap::direction_at(Vec2 uv) const {
+    const float theta = pi * uv.y, phi = 2 * pi * (uv.x - 0.5f);
+    const float sin_theta = std::sin(theta);
+    const float x = sin_theta * std::cos(phi), z = sin_theta * std::sin(phi);
+    // Back from the image's frame: the inverse of image_point's rotation.
+    return {x * m_cos_rotation - z * m_sin_rotation, std::cos(theta), x * m_sin_rotation + z * m_cos_rotation};
+}
+
+std::optional<EnvironmentMap::Sample> EnvironmentMap::sample_facing(Vec3 n, Vec2 u) const {
+    if (m_black || m_image.pixels.empty()) return std::nullopt;
+    // A cell by the fixed normal, a pixel in it, a point in the pixel: u.x's remainder at each
+    // step chooses the next, u.y the point's row.
+    const Distribution1D& cells = m_facing[size_t(nearest_facing_normal(n))];
+    const Distribution1D::Sample cell = cells.sample(u.x);
+    const float rest = std::clamp(cell.x * float(cells.size()) - float(cell.index), 0.0f, 0x1.fffffep-1f);
+    const Distribution1D& pixels = m_cell_pixels[size_t(cell.index)];
+    const Distribution1D::Sample pixel = pixels.sample(rest);
+    const float across = std::clamp(pixel.x * float(pixels.size()) - float(pixel.index), 0.0f, 0x1.fffffep-1f);
+    const int cx = cell.index % m_cells_x, cy = cell.index / m_cells_x, width = cell_width(cx);
+    const int column = cx * facing_cell_size + pixel.index % width, row = cy * facing_cell_size + pixel.index / width;
+    const Vec3 w =
+        direction_at({(float(column) + across) / float(m_image.width), (float(row) + u.y) / float(m_image.height)});
+    // From w itself, as sample() does.
+    const float density = pdf_facing(n, w);
+    if (!(density > 0)) return std::nullopt;
+    return Sample{w, radiance(w), density};
+}
+
+float EnvironmentMap::pdf_facing(Vec3 n, Vec3 w) const {
+    if (m_black || m_image.pixels.empty()) return 0;
+    const ImagePoint point = image_point(w);
+    if (!(point.sin_theta > 0)) return 0;
+    const Distribution2D::Cell pixel = m_distribution.cell(point.uv);
+    const int cx = pixel.column / facing_cell_size, cy = pixel.row / facing_cell_size;
+    const int cell = cy * m_cells_x + cx;
+    const int local = (pixel.row - cy * facing_cell_size) * cell_width(cx) + pixel.column - cx * facing_cell_size;
+    const Distribution1D& cells = m_facing[size_t(nearest_facing_normal(n))];
+    const Distribution1D& pixels = m_cell_pixels[size_t(cell)];
+    const float density_uv = cells.cell_pdf(cell) / float(cells.size()) * pixels.cell_pdf(local) /
+                             float(pixels.size()) * float(m_image.width) * float(m_image.height);
+    return density_uv / (2 * pi * pi * point.sin_theta);
 }
 
 uint64_t EnvironmentMap::hash() const {

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "steadylight/base/color.h"
 #include "steadylight/base/distribution_2d.h"
@@ -52,6 +53,16 @@ public:
     /// two poles (where sin θ = 0, a set of no measure).
     float pdf(Vec3 w) const;
 
+    /// Directions for the light a surface of unit normal `n` receives: about the image's
+    /// luminance times the cosine to n (exactly to the nearest of the fixed normals, on cells of
+    /// pixels; see above). For an image only: nullopt for a uniform colour (whose cosine-weighted
+    /// sampling is exact), where sample() gives none, and rarely at the edge of a cell that sends
+    /// nothing towards n (rounding puts the direction across it). The sample's pdf is
+    /// pdf_facing(n, w).
+    std::optional<Sample> sample_facing(Vec3 n, Vec2 u) const;
+    /// The solid-angle density sample_facing(n, ·) gives w; 0 for a uniform colour.
+    float pdf_facing(Vec3 n, Vec3 w) const;
+
     /// Mean luminance of the radiance over the sphere (1/4π ∫ L dω), for choosing among lights.
     float mean_luminance() const { return m_mean_luminance; }
     /// No direction sends any light.
@@ -70,12 +81,21 @@ private:
         float sin_theta = 0;
     };
     ImagePoint image_point(Vec3 w) const;
+    /// The direction that looks up (u, 1 - v) = uv: image_point's inverse.
+    Vec3 direction_at(Vec2 uv) const;
+    /// Builds the cells and their weights per fixed normal from the pixels' sampling weights.
+    void build_facing(const std::vector<float>& weights);
+    /// The width in pixels of the cells in column cx (the last column may be narrower).
+    int cell_width(int cx) const;
 
     Rgb m_radiance;  // the uniform colour; unused with an image
     Image m_image;   // empty for a uniform colour
     float m_strength = 1, m_rotation_degrees = 0;
     float m_cos_rotation = 1, m_sin_rotation = 0;
-    Distribution2D m_distribution;  // over the pixels, for an image
+    Distribution2D m_distribution;              // over the pixels, for an image
+    int m_cells_x = 0, m_cells_y = 0;           // cells of the facing sampling
+    std::vector<Distribution1D> m_cell_pixels;  // per cell (row-major): over its pixels, row-major
+    std::vector<Distribution1D> m_facing;       // per fixed normal: over the cells
     float m_mean_luminance = 0;
     bool m_black = true;  // no direction sends any light
 };

@@ -240,33 +240,36 @@ class WorldLight final : public Light {
 public:
     WorldLight(const WorldDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals,
                const DistantPhotonTargets* targets)
-        : m_map(desc.radiance),
-          m_cosine_share(m_map->is_uniform() ? 0.75f : 0.25f),
-          m_scene(scene),
-          m_portals(portals),
-          m_targets(targets) {
+        : m_map(desc.radiance), m_scene(scene), m_portals(portals), m_targets(targets) {
         if (m_targets && m_portals.empty())
             m_aimed = m_targets->aimed_directions([this](Vec3 d) { return luminance(m_map->radiance(-d)); });
     }
 
-    /// Facing a normal: cosine-weighted about it with probability m_cosine_share, else by the
-    /// map (uniform over the sphere for a uniform colour; by luminance times solid angle for an
-    /// image, which finds a small bright sun in it), so that every lit direction keeps a chance
-    /// (light from behind a rough pane). Inside a room with portals, half of the samples go
-    /// through a portal instead.
+    /// Facing a normal, a mix (Shares): for a uniform colour cosine-weighted about it three times
+    /// in four, else uniformly; for an image mostly by its light times the cosine
+    /// (EnvironmentMap::sample_facing), and by its light alone (which finds a small bright sun
+    /// exactly) or cosine-weighted besides; so that every lit direction keeps a chance (light
+    /// from behind a rough pane). Inside a room with portals, through a portal half of the time
+    /// (three times in four for a uniform colour), else by the map.
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3 n) const override {
         const Shares shares = shares_at(ref, n);
         LightSample s;
+        // u.x chooses the strategy and, rescaled to [0, 1), goes on into it.
+        const auto rescaled = [&](float begin, float share) {
+            return Vec2{std::min((u.x - begin) / share, 0x1.fffffep-1f), u.y};
+        };
+        const float facing_begin = shares.portal + shares.cosine, map_begin = facing_begin + shares.facing;
         if (u.x < shares.portal) {
-            const std::optional<Vec3> w = m_portals.sample_direction(ref, {u.x / shares.portal, u.y});
+            const std::optional<Vec3> w = m_portals.sample_direction(ref, rescaled(0, shares.portal));
             if (!w) return std::nullopt;
             s.wi = *w;
-        } else if (u.x < shares.portal + shares.cosine) {
+        } else if (u.x < facing_begin) {
             s.wi = OrthonormalBasis::from_normal(n).to_world(
-                sample_cosine_hemisphere({(u.x - shares.portal) / shares.cosine, u.y}));
+                sample_cosine_hemisphere(rescaled(shares.portal, shares.cosine)));
         } else {
-            const float rest = (u.x - shares.portal - shares.cosine) / (1 - shares.portal - shares.cosine);
-            const std::optional<EnvironmentMap::Sample> sample = m_map->sample({std::min(rest, 0x1.fffffep-1f), u.y});
+            const std::optional<EnvironmentMap::Sample> sample =
+                u.x < map_begin ? m_map->sample_facing(n, rescaled(facing_begin, shares.facing))
+                                : m_map->sample(rescaled(map_begin, 1 - map_begin));
             if (!sample) return std::nullopt;
             s.wi = sample->w;
         }
@@ -281,8 +284,9 @@ public:
     float pdf_li(Vec3, Vec3, Vec3) const override { return 0; }
     float pdf_escaped(Vec3 ref, Vec3 w, Vec3 n) const override {
         const Shares shares = shares_at(ref, n);
-        float pdf = (1 - shares.portal - shares.cosine) * m_map->pdf(w);
+        float pdf = (1 - shares.portal - shares.cosine - shares.facing) * m_map->pdf(w);
         if (shares.cosine > 0) pdf += shares.cosine * std::max(0.0f, dot(w, n)) * inv_pi;
+        if (shares.facing > 0) pdf += shares.facing * m_map->pdf_facing(n, w);
         if (shares.portal > 0) pdf += shares.portal * m_portals.pdf(ref, w);
         return pdf;
     }
@@ -329,15 +333,17 @@ public:
 
 private:
     /// How sample_li divides its samples at `ref` (normal `n`): through portals, cosine-weighted,
-    /// and the rest by the map.
+    /// by the image's light times the cosine, and the rest by the map alone.
     struct Shares {
-        float portal = 0, cosine = 0;
+        float portal = 0, cosine = 0, facing = 0;
     };
     Shares shares_at(Vec3 ref, Vec3 n) const {
         // Through a window the cosine adds nothing the portals do not: portals and the map
         // (which finds a bright sun in an image) share the samples.
-        if (m_portals.seen_from_inside(ref)) return {m_map->is_uniform() ? 0.75f : 0.5f, 0.0f};
-        return {0.0f, length2(n) > 0 ? m_cosine_share : 0.0f};
+        if (m_portals.seen_from_inside(ref)) return {m_map->is_uniform() ? 0.75f : 0.5f, 0.0f, 0.0f};
+        if (!(length2(n) > 0)) return {};
+        if (m_map->is_uniform()) return {0.0f, 0.75f, 0.0f};
+        return {0.0f, 0.05f, 0.45f};
     }
 
     /// A point uniformly on the portals, a direction into the room through it cosine-weighted
@@ -364,7 +370,6 @@ private:
     }
 
     std::shared_ptr<const EnvironmentMap> m_map;
-    float m_cosine_share;
     BoundingSphere m_scene;
     Portals m_portals;
     const DistantPhotonTargets* m_targets;
