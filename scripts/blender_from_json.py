@@ -8,9 +8,12 @@ What it reads, which is what the daylit truth-suite scenes use:
 - suns: a Sun lamp whose Strength is the irradiance (W m^-2, the largest channel, the colour the
   channels over it) and whose Angle is the sun's angular diameter;
 - a world colour: the Background's Color x Strength, Blender's World as steadylight's is;
+- a world image: an Environment Texture (equirectangular, Closest: steadylight looks up the
+  nearest pixel) fed by a Mapping node of type Point whose Z rotation is `rotation_degrees`,
+  into the Background at `strength`;
 - portals: Cycles light portals (a rectangular area light marked Portal, facing into the room);
 - the camera: position, look_at, up, fov_y (vertical sensor fit) and resolution.
-Anything else (emitters, point and spot lamps, images, glTF, rotation tracks) stops it with a
+Anything else (emitters, point and spot lamps, a sky, glTF, rotation tracks) stops it with a
 message rather than render another scene.
 
 steadylight's frame is glTF's (+y up); Blender's is +z up: (x, y, z) becomes (x, -z, y), a
@@ -18,6 +21,7 @@ rotation, so every normal keeps its side.
 """
 import json
 import math
+import os
 
 import bpy
 from mathutils import Matrix, Quaternion, Vector
@@ -148,13 +152,35 @@ def add_suns(scene):
         bpy.context.scene.collection.objects.link(obj)
 
 
-def add_world(scene):
+def add_world_image(world, spec, folder):
+    """The Background's colour from the image as steadylight maps it (docs/scene-format.md)."""
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    coordinates = nodes.new("ShaderNodeTexCoord")
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "POINT"
+    mapping.inputs["Rotation"].default_value = (0, 0, math.radians(spec.get("rotation_degrees", 0)))
+    texture = nodes.new("ShaderNodeTexEnvironment")
+    texture.image = bpy.data.images.load(os.path.join(folder, spec["image"]))
+    texture.image.colorspace_settings.name = "Linear"
+    texture.interpolation = "Closest"
+    texture.projection = "EQUIRECTANGULAR"
+    links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])
+    links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    links.new(texture.outputs["Color"], nodes["Background"].inputs["Color"])
+
+
+def add_world(scene, folder):
     world = bpy.data.worlds.new("World")
     world.use_nodes = True
     background = world.node_tree.nodes["Background"]
     spec = scene.get("world")
-    if spec and ("image" in spec or "sky" in spec):
-        raise SystemExit("world: only a colour is supported here")
+    if spec and "sky" in spec:
+        raise SystemExit("world: a sky is not supported here")
+    if spec and "image" in spec:
+        add_world_image(world, spec, folder)
+        background.inputs["Strength"].default_value = spec.get("strength", 1)
+        bpy.context.scene.world = world
+        return
     colour = spec.get("color", [0.05] * 3) if spec else [0, 0, 0]
     colour = [colour] * 3 if isinstance(colour, (int, float)) else colour
     background.inputs["Color"].default_value = (*colour, 1)
@@ -204,6 +230,6 @@ def build_scene(path, frame, size=None):
     fps = scene.get("frames", {}).get("fps", 24)
     add_objects(scene, frame / fps)
     add_suns(scene)
-    add_world(scene)
+    add_world(scene, os.path.dirname(os.path.abspath(path)))
     add_portals(scene)
     add_camera(scene, size)
