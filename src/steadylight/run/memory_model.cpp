@@ -20,6 +20,7 @@ constexpr double bytes_per_pixel_photon_methods = 250;
 constexpr double bytes_per_pixel_path = 60;
 constexpr double bytes_per_pixel_alpha = 12;  // the alpha image of --transparent-background
 constexpr double bytes_per_photon_path = 300;
+constexpr double bytes_per_world_pixel = 48;
 
 /// A limit in bytes from a file holding one number ("max" or a huge value: none).
 std::optional<size_t> limit_from_file(const char* path) {
@@ -55,6 +56,7 @@ long triangle_count(const SceneDesc& desc) {
 MemoryEstimate estimate_memory(const RenderSettings& settings, const Scene& scene) {
     MemoryEstimate need;
     need.scene = bytes_per_triangle * double(triangle_count(scene.desc()));
+    if (scene.desc().world) need.scene += bytes_per_world_pixel * double(scene.desc().world->radiance->pixel_count());
     const Camera& camera = scene.evaluate(0).camera;
     const bool path = settings.method == Method::path;
     need.pixels = double(camera.width) * double(camera.height) *
@@ -84,7 +86,7 @@ void check_memory(const MemoryEstimate& need, const MemoryLimit& limit) {
     if (need.total() <= double(limit.bytes)) return;
     const char* option = need.pixels >= need.photons && need.pixels >= need.scene ? "--size"
                          : need.photons >= need.scene                             ? "--photons and --caustic-photons"
-                                                                                  : "the scene's triangles";
+                                                      : "the scene's triangles or world image";
     throw InputError("memory",
                      fmt::format("this render needs about {} (image {}, photons {}, scene {}), more than the {} "
                                  "available ({}); lower {} (docs/usage.md, \"Memory\")",

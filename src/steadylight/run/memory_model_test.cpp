@@ -20,7 +20,7 @@ std::string error_of(const MemoryEstimate& need, size_t limit) {
     return "";
 }
 
-TEST(MemoryModel, GrowsWithPixelsPhotonsAndTriangles) {
+TEST(MemoryModel, GrowsWithPixelsPhotonsTrianglesAndTheWorldImage) {
     SceneDesc desc = testing::make_empty_scene({0, 0, -3}, {0, 0, 0}, 100, 50);
     testing::add_object(desc, make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), testing::add_material(desc, {}), {1, 1, 1});
     const Scene scene(std::move(desc));
@@ -36,6 +36,12 @@ TEST(MemoryModel, GrowsWithPixelsPhotonsAndTriangles) {
     const MemoryEstimate path = estimate_memory(settings, scene);
     EXPECT_DOUBLE_EQ(path.pixels, 100 * 50 * 60.0);
     EXPECT_EQ(path.photons, 0);
+    // A world image counts with the scene, a uniform world not.
+    SceneDesc lit = scene.desc();
+    lit.world = WorldDesc::uniform({1, 1, 1});
+    EXPECT_DOUBLE_EQ(estimate_memory(settings, Scene(lit)).scene, 2 * 160.0);
+    lit.world->radiance = std::make_shared<EnvironmentMap>(Image(64, 32), 1.0f, 0.0f);
+    EXPECT_DOUBLE_EQ(estimate_memory(settings, Scene(lit)).scene, 2 * 160.0 + 64 * 32 * 48.0);
 }
 
 TEST(MemoryModel, TooMuchIsAnErrorNamingWhatToLower) {
@@ -48,7 +54,8 @@ TEST(MemoryModel, TooMuchIsAnErrorNamingWhatToLower) {
     EXPECT_NE(error_of({.scene = 1e6, .pixels = 1e7, .photons = 30e9}, size_t(24e9))
                   .find("lower --photons and --caustic-photons"),
               std::string::npos);
-    EXPECT_NE(error_of({.scene = 40e9, .pixels = 1e7, .photons = 1e8}, size_t(24e9)).find("the scene's triangles"),
+    EXPECT_NE(error_of({.scene = 40e9, .pixels = 1e7, .photons = 1e8}, size_t(24e9))
+                  .find("the scene's triangles or world image"),
               std::string::npos);
 }
 

@@ -69,6 +69,8 @@ public:
     bool is_black() const { return m_black; }
     /// A uniform colour (no image).
     bool is_uniform() const { return m_image.pixels.empty(); }
+    /// The image's pixels (0 for a uniform colour).
+    size_t pixel_count() const { return m_image.pixels.size(); }
     /// Hash of everything that determines the radiance (pixels, size, strength, rotation, colour),
     /// for the static cache's staleness check.
     uint64_t hash() const;
