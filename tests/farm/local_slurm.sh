@@ -27,8 +27,20 @@ for program in munged mungekey slurmctld slurmd sbatch; do
 done
 [ "$(id -u)" -eq 0 ] || { echo "skip: the local Slurm cluster needs root"; exit 77; }
 
-# Random ports, so that a second cluster or a leftover one (or a system Slurm) does not clash.
-port() { shuf -i 20000-59999 -n 1; }
+# Random ports, so that a second cluster or a leftover one (or a system Slurm) does not clash;
+# below the kernel's range of ephemeral ports (ip_local_port_range, 32768-60999 by default), where
+# any outgoing connection (sshfs's, Slurm's own) may hold the port the daemon wants to bind; and
+# not one that a socket holds now (/proc/net/tcp and tcp6 list them in hex).
+port() {
+  local low=32768 candidate
+  read -r low _ < /proc/sys/net/ipv4/ip_local_port_range 2>/dev/null || true
+  while :; do
+    candidate=$(shuf -i 20000-$((low - 1)) -n 1)
+    awk -v p="$(printf '%04X' "$candidate")" 'FNR > 1 { split($2, a, ":"); if (a[2] == p) found = 1 }
+        END { exit !found }' /proc/net/tcp /proc/net/tcp6 2>/dev/null || break
+  done
+  echo "$candidate"
+}
 host=$(hostname -s)
 mkdir -p "$dir/munge" "$dir/state" "$dir/spool"
 chmod 755 "$dir"
