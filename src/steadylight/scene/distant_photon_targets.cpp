@@ -51,14 +51,17 @@ int bin_of(Vec3 d) {
 /// The area of a bin's square on the map (the map is 2 x 2).
 constexpr float bin_area = 4.0f / float(direction_bins * direction_bins);
 
+/// The point of the map at fractions f (each in [0, 1)) across and up bin's square.
+Vec2 bin_point(int bin, Vec2 f) {
+    const float size = 2.0f / direction_bins;
+    return {-1 + (float(bin % direction_bins) + f.x) * size, -1 + (float(bin / direction_bins) + f.y) * size};
+}
+
 }  // namespace
 
 AimedDirections::Sample AimedDirections::sample(Vec2 u) const {
     const Distribution1D::Sample bin = m_bins.sample(u.x);
-    const float size = 2.0f / direction_bins;
-    const Vec2 q{-1 + (float(bin.index % direction_bins) + u.y) * size,
-                 -1 + (float(bin.index / direction_bins) + (bin.x * float(m_bins.size()) - float(bin.index))) * size};
-    const Vec3 d = octahedral_direction(q);
+    const Vec3 d = octahedral_direction(bin_point(bin.index, {u.y, bin.x * float(m_bins.size()) - float(bin.index)}));
     return {d, pdf(d)};
 }
 
@@ -74,10 +77,7 @@ DistantPhotonTargets::DistantPhotonTargets(const BoundingSphere& scene,
       m_marks(size_t(direction_bins * direction_bins), std::vector<uint8_t>(size_t(cells * cells), 0)),
       m_marked(size_t(direction_bins * direction_bins)) {
     for (const auto& [d, p] : crossings) {
-        const Vec2 xy = plane_coordinates(d, p);
-        const float cell_size = 2 * m_radius / cells;
-        const int i = int(std::floor((xy.x + m_radius) / cell_size)),
-                  j = int(std::floor((xy.y + m_radius) / cell_size));
+        const auto [i, j] = grid_cell(plane_coordinates(d, p));
         std::vector<uint8_t>& marks = m_marks[size_t(bin_of(d))];
         // The neighbours too: a direction elsewhere in the bin crosses the same opening a little
         // aside.
@@ -96,9 +96,13 @@ Vec2 DistantPhotonTargets::plane_coordinates(Vec3 d, Vec3 p) const {
     return {dot(p - m_scene.center, basis.s), dot(p - m_scene.center, basis.t)};
 }
 
-int DistantPhotonTargets::cell_of(Vec2 xy) const {
+std::pair<int, int> DistantPhotonTargets::grid_cell(Vec2 xy) const {
     const float cell_size = 2 * m_radius / cells;
-    const int i = int(std::floor((xy.x + m_radius) / cell_size)), j = int(std::floor((xy.y + m_radius) / cell_size));
+    return {int(std::floor((xy.x + m_radius) / cell_size)), int(std::floor((xy.y + m_radius) / cell_size))};
+}
+
+int DistantPhotonTargets::cell_of(Vec2 xy) const {
+    const auto [i, j] = grid_cell(xy);
     return i >= 0 && i < cells && j >= 0 && j < cells ? j * cells + i : -1;
 }
 
@@ -134,7 +138,6 @@ std::optional<AimedDirections> DistantPhotonTargets::aimed_directions(
     // directions in it (an image's small bright sun may fall between them: the light's own
     // sampling keeps it).
     constexpr int grid = 6;
-    const float size = 2.0f / direction_bins;
     std::vector<float> weights(m_marked.size(), 0.0f);
     bool any = false;
     for (size_t bin = 0; bin < m_marked.size(); ++bin) {
@@ -142,9 +145,8 @@ std::optional<AimedDirections> DistantPhotonTargets::aimed_directions(
         double light = 0;
         for (int b = 0; b < grid; ++b)
             for (int a = 0; a < grid; ++a) {
-                const Vec2 q{-1 + (float(bin % direction_bins) + (float(a) + 0.5f) / grid) * size,
-                             -1 + (float(bin / direction_bins) + (float(b) + 0.5f) / grid) * size};
-                const Vec3 d = octahedral_direction(q);
+                const Vec3 d =
+                    octahedral_direction(bin_point(int(bin), {(float(a) + 0.5f) / grid, (float(b) + 0.5f) / grid}));
                 light += double(luminance(d)) * solid_angle_per_area(d);
             }
         weights[bin] = float(light / (grid * grid) * bin_area * double(m_marked[bin].size()));

@@ -72,6 +72,8 @@ public:
 private:
     /// Coordinates of p in the disc's plane for direction d, about the scene's centre.
     Vec2 plane_coordinates(Vec3 d, Vec3 p) const;
+    /// The grid's column and row that hold xy (outside [0, cells) beyond the grid).
+    std::pair<int, int> grid_cell(Vec2 xy) const;
     int cell_of(Vec2 xy) const;  // -1 outside the grid
 
     BoundingSphere m_scene;
