@@ -481,6 +481,45 @@ TEST_F(GltfLoader, SpotLightBecomesPointLightDesc) {
     }
 }
 
+// A directional light is a sun: down its node's -z, lux / 683 W/m^2 as Blender's exporter writes
+// a sun of S W/m^2 (S x 683), 0.53 degrees wide unless a wrapper JSON gives its angle by name.
+TEST_F(GltfLoader, DirectionalLightBecomesASunWhoseAngleAWrapperGivesByName) {
+    tinygltf::Model model = camera_model();
+    tinygltf::Light light;
+    light.type = "directional";
+    light.color = {1, 0.5, 0.25};
+    light.intensity = 683 * 4;
+    model.lights.push_back(light);
+    tinygltf::Node node = make_node("Sun", -1, {0, 10, 0});
+    node.rotation = {-std::sin(pi / 4), 0, 0, std::cos(pi / 4)};  // -z turned to -y
+    node.extensions["KHR_lights_punctual"] = number_object("light", 0);
+    add_node(model, node);
+    for (const Loaded& loaded : write_and_load(model)) {
+        SCOPED_TRACE(loaded.path);
+        ASSERT_EQ(loaded.desc.suns.size(), 1u);
+        const SunLightDesc& sun = loaded.desc.suns[0];
+        EXPECT_EQ(sun.name, "Sun");
+        expect_near(sun.direction, {0, -1, 0});
+        expect_near(sun.irradiance, Rgb{4, 2, 1});
+        EXPECT_EQ(sun.angle_deg, SunLightDesc::default_sun_angle_deg);
+    }
+    write(model, "sun.glb");
+    const fs::path wrapper = m_dir / "scene.json";
+    std::ofstream(wrapper) << R"({"gltf": "sun.glb", "sun_angles_degrees": {"Sun": 2.5}})";
+    EXPECT_EQ(load_scene_desc(wrapper.string()).suns.at(0).angle_deg, 2.5f);
+    for (const auto& [angles, error] :
+         {std::pair{R"({"Moon": 2.5})", "/sun_angles_degrees/Moon: no sun light of that name"},
+          std::pair{R"({"Sun": 91})", "/sun_angles_degrees/Sun: must lie in [0, 90]"}}) {
+        std::ofstream(wrapper) << R"({"gltf": "sun.glb", "sun_angles_degrees": )" << angles << "}";
+        try {
+            load_scene_desc(wrapper.string());
+            ADD_FAILURE() << angles << " loaded without an error";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string("scene.json:") + error), std::string::npos) << e.what();
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Animation
 

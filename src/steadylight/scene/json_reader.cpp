@@ -153,6 +153,12 @@ std::vector<std::pair<std::string, JsonObject>> JsonObject::members(const std::s
     return result;
 }
 
+std::vector<std::string> JsonObject::keys() const {
+    std::vector<std::string> result;
+    for (auto it = m_json.begin(); it != m_json.end(); ++it) result.push_back(it.key());
+    return result;
+}
+
 void JsonObject::warn_unread() const {
     for (auto it = m_json.begin(); it != m_json.end(); ++it)
         if (!m_read.count(it.key())) spdlog::warn("{}:{}: unknown field \"{}\" ignored", m_file, path(""), it.key());

@@ -43,8 +43,10 @@ public:
 
     JsonObject object(const std::string& key) const;
     std::vector<JsonObject> objects(const std::string& key) const;
-    /// The members of an object-valued key, in key order.
+    /// The members of an object-valued key, in key order: each must be an object.
     std::vector<std::pair<std::string, JsonObject>> members(const std::string& key) const;
+    /// The keys of this object, in key order, whatever their values.
+    std::vector<std::string> keys() const;
 
     /// Throws InputError for `key` (or for this object when `key` is empty).
     [[noreturn]] void fail(const std::string& key, const std::string& message) const;

@@ -553,8 +553,7 @@ PortalDesc parse_portal(const JsonObject& json) {
 /// ("sun_angles_degrees": {"Sun": 1.5}): glTF carries no angle.
 void apply_sun_angles(const JsonObject& root, SceneDesc& desc) {
     const JsonObject angles = root.object("sun_angles_degrees");
-    for (const auto& [name, value] : root.members("sun_angles_degrees")) {
-        (void)value;
+    for (const std::string& name : angles.keys()) {
         const auto sun =
             std::find_if(desc.suns.begin(), desc.suns.end(), [&name](const SunLightDesc& s) { return s.name == name; });
         if (sun == desc.suns.end()) angles.fail(name, "no sun light of that name in the scene");
