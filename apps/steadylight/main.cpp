@@ -67,6 +67,10 @@ void add_output_options(CLI::App* command, RenderSettings& settings, RawOptions&
     command->add_flag("--transparent-background", settings.output.transparent_background,
                       "Leave the world out of what the camera sees directly: EXR and PNG with alpha (the share of "
                       "camera rays that meet a surface; the world seen through glass and mirrors stays)");
+    command->add_option("--blender-view-layer", settings.output.blender_view_layer,
+                        "EXR channels named as Blender's render result names them for view layer NAME: "
+                        "NAME.Combined.R, G, B, A and NAME.<layer>.R, G, B or NAME.<layer>.X (what "
+                        "RenderResult.load_from_file reads; the Blender add-on uses it)");
     command->add_option("--video", settings.output.video_file,
                         "Encode the frames' PNGs as an H.264 MP4 with ffmpeg after rendering");
 }

@@ -112,8 +112,17 @@ StaticSolution segment_solution(const RenderSettings& settings, const Scene& sce
 void write_frame(const RenderSettings& settings, const Scene& scene, int frame, const RenderedFrame& rendered) {
     const OutputSettings& output = settings.output;
     const Image* alpha = rendered.alpha ? &*rendered.alpha : nullptr;
-    write_exr(frame_file_name(settings.out_dir, scene.name(), frame, "exr"),
-              frame_exr_layers(rendered.beauty, rendered.layers, alpha), output.exr_type);
+    const std::string exr = frame_file_name(settings.out_dir, scene.name(), frame, "exr");
+    if (output.blender_view_layer.empty()) {
+        write_exr(exr, frame_exr_layers(rendered.beauty, rendered.layers, alpha), output.exr_type);
+    } else {
+        Image opaque(rendered.beauty.width, rendered.beauty.height);
+        std::fill(opaque.pixels.begin(), opaque.pixels.end(), Rgb{1, 1, 1});
+        write_exr(
+            exr,
+            blender_exr_layers(output.blender_view_layer, rendered.beauty, rendered.layers, alpha ? *alpha : opaque),
+            output.exr_type);
+    }
     write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view, alpha);
     if (settings.aov_pngs)
         for (const NamedImage& layer : rendered.layers)

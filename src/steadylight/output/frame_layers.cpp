@@ -14,6 +14,14 @@ std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<Na
     return layers;
 }
 
+std::vector<ExrLayer> blender_exr_layers(const std::string& view_layer, const Image& beauty,
+                                         const std::vector<NamedImage>& aovs, const Image& alpha) {
+    std::vector<ExrLayer> layers{{view_layer + ".Combined", &beauty, false, &alpha}};
+    for (const NamedImage& aov : aovs)
+        layers.push_back({view_layer + "." + aov.name, &aov.image, aov.grey, nullptr, "X"});
+    return layers;
+}
+
 namespace {
 
 void replace_non_finite(Image& image, const std::string& layer, NonFiniteValues& found) {

@@ -21,6 +21,13 @@ namespace steadylight {
 std::vector<ExrLayer> frame_exr_layers(const Image& beauty, const std::vector<NamedImage>& aovs,
                                        const Image* alpha = nullptr);
 
+/// The same layers named as Blender's render result names its passes in view layer
+/// `view_layer` (what RenderResult.load_from_file reads): the beauty once, as
+/// `<view_layer>.Combined` with its A channel (`alpha`: ones for an opaque frame), then each AOV as
+/// `<view_layer>.<name>`, a grey one with the single channel X.
+std::vector<ExrLayer> blender_exr_layers(const std::string& view_layer, const Image& beauty,
+                                         const std::vector<NamedImage>& aovs, const Image& alpha);
+
 /// The values of a frame's layers that were not finite (NaN, an infinity). No layer may hold
 /// one: it is a defect upstream, and a compositor's blur would spread it over the image.
 struct NonFiniteValues {

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <limits>
+
+#include "steadylight/output/image_writer.h"
 
 namespace steadylight {
 namespace {
@@ -29,6 +32,28 @@ TEST(FrameLayers, NonFiniteValuesAreWrittenAsZeroAndReported) {
     EXPECT_EQ(aovs[0].image.at(3, 0).g, 1e30f);
     EXPECT_EQ(beauty.at(1, 1).g, 2);
     EXPECT_EQ(replace_non_finite(beauty, aovs).count, 0);
+}
+
+// Blender's RenderResult.load_from_file fills a pass only from channels named
+// <view layer>.<pass>.<channel>, and Combined needs its A: the names the add-on reads.
+TEST(FrameLayers, BlenderNamesAreViewLayerPassAndChannelWithCombinedAlpha) {
+    Image beauty(2, 2), alpha(2, 2);
+    beauty.at(1, 0) = {0.25f, 0.5f, 0.75f};
+    alpha.at(1, 0) = {1, 1, 1};
+    std::vector<NamedImage> aovs{{"direct", Image(2, 2)}, {"influence", Image(2, 2), true}};
+    aovs[1].image.at(0, 1).r = 3;
+    const std::string path = (std::filesystem::temp_directory_path() / "steadylight_blender_names.exr").string();
+    write_exr(path, blender_exr_layers("View Layer.001", beauty, aovs, alpha), ExrPixelType::float32);
+    std::vector<std::string> names;
+    for (const ExrChannelInfo& channel : read_exr_channels(path)) names.push_back(channel.name);
+    EXPECT_EQ(names, (std::vector<std::string>{"View Layer.001.Combined.A", "View Layer.001.Combined.B",
+                                               "View Layer.001.Combined.G", "View Layer.001.Combined.R",
+                                               "View Layer.001.direct.B", "View Layer.001.direct.G",
+                                               "View Layer.001.direct.R", "View Layer.001.influence.X"}));
+    EXPECT_EQ(read_exr_channel(path, "View Layer.001.Combined.G")[1], 0.5f);
+    EXPECT_EQ(read_exr_channel(path, "View Layer.001.Combined.A")[1], 1);
+    EXPECT_EQ(read_exr_channel(path, "View Layer.001.influence.X")[2], 3);
+    std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -72,7 +72,7 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
             buffer.insert(name, Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
         };
         for (const ExrLayer& layer : layers) {
-            for (const auto& [name, component] : exr_layer_channels(layer.name, layer.scalar))
+            for (const auto& [name, component] : exr_layer_channels(layer.name, layer.scalar, layer.scalar_channel))
                 add_channel(name, *layer.image, component);
             if (layer.alpha) add_channel(layer.name.empty() ? "A" : layer.name + ".A", *layer.alpha, 0);
         }

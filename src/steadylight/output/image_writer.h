@@ -23,6 +23,7 @@ struct ExrLayer {
     const Image* image;
     bool scalar = false;
     const Image* alpha = nullptr;
+    std::string scalar_channel = "Y";  // Blender names a grey pass's channel X
 };
 
 /// How EXR channels are stored: 16-bit half (the default; enough for display-referred work

@@ -22,18 +22,23 @@ struct OutputSettings {
     /// frames get alpha, the share of each pixel's camera rays that met a surface (glass and
     /// mirrors count as surfaces: the world seen through them stays, as in Cycles by default).
     bool transparent_background = false;
+    /// Non-empty: the EXR's channels are named as Blender's render result names them for this view
+    /// layer (frame_layers.h), for the Blender add-on.
+    std::string blender_view_layer;
 };
 
 /// What shapes the written images: the settings file's "render" part holds it
 /// (run/settings_file.h). The video is left out, since it does not change the frames. A
 /// transparent background is there only when chosen: the folders rendered before the option
-/// existed hold opaque frames, and stay valid for a run that does not choose it.
+/// existed hold opaque frames, and stay valid for a run that does not choose it; so are Blender's
+/// channel names.
 inline void to_json(nlohmann::json& json, const OutputSettings& s) {
     json = {{"exr_type", s.exr_type == ExrPixelType::half ? "half" : "float"},
             {"exposure_ev", s.view.exposure_ev},
             {"view_transform", s.view.curve == ViewCurve::filmic ? "filmic" : "standard"},
             {"dither", s.view.dither}};
     if (s.transparent_background) json["transparent_background"] = true;
+    if (!s.blender_view_layer.empty()) json["blender_view_layer"] = s.blender_view_layer;
 }
 
 /// Throws InputError for an exposure out of range (or NaN).

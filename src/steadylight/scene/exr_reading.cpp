@@ -136,9 +136,10 @@ private:
 
 }  // namespace
 
-std::vector<std::pair<std::string, int>> exr_layer_channels(const std::string& layer, bool scalar) {
+std::vector<std::pair<std::string, int>> exr_layer_channels(const std::string& layer, bool scalar,
+                                                            const std::string& scalar_channel) {
     const std::string prefix = layer.empty() ? "" : layer + ".";
-    if (scalar) return {{prefix + "Y", 0}};
+    if (scalar) return {{prefix + scalar_channel, 0}};
     const std::array<std::string, 3> rgb = {"R", "G", "B"};
     std::vector<std::pair<std::string, int>> channels;
     for (int c = 0; c < 3; ++c) channels.emplace_back(prefix + rgb[size_t(c)], c);

@@ -18,7 +18,8 @@ namespace steadylight {
 /// The EXR channel names of a layer and the colour component (0, 1, 2) each holds:
 /// `<layer>.R`, `<layer>.G`, `<layer>.B`, or `<layer>.Y` alone for a scalar (grey) layer; plain
 /// R, G, B or Y for the empty name.
-std::vector<std::pair<std::string, int>> exr_layer_channels(const std::string& layer, bool scalar);
+std::vector<std::pair<std::string, int>> exr_layer_channels(const std::string& layer, bool scalar,
+                                                            const std::string& scalar_channel = "Y");
 
 /// Whether `bytes` begin with the EXR magic number.
 bool is_exr(std::string_view bytes);
