@@ -13,15 +13,18 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # What the tests need beyond the build: clang-format (repo.format), Chromium (cli.report_chromium),
-# sshfs and an SSH server (farm.sshfs).
-bash scripts/setup.sh clang-format chromium sshfs openssh-server
+# sshfs and an SSH server (farm.sshfs), Blender (blender.addon; not the demo's: it renders alone).
+bash scripts/setup.sh clang-format chromium sshfs openssh-server blender
 
 # Tests over 10 s each under the address and undefined sanitizers (60% of that suite's time):
 # the kill-and-resume and farm runs, the truth suite's renders, the longest animation tests.
 slow_under_sanitizers='^(cli\.(kill_resume|blender_room|disk_faults|farm_share|resume)|farm\.(slurm|slurm_faults|sshfs)|Scenes/TruthSuite\.'
 slow_under_sanitizers+='|Localized\.(CacheFileOfTheLightOff|FrozenCacheRecomputes|SwitchedOnLight|StaticCacheIsSaved)'
 slow_under_sanitizers+='|DynamicPhotons\.StaticPathsRetracedWhere|ComposedMaps\.MovingAbsorbingGlass'
-slow_under_sanitizers+='|PixelReuse\.PixelsWithNoTermChanged)'
+slow_under_sanitizers+='|PixelReuse\.PixelsWithNoTermChanged'
+# The Blender add-on's test runs in the Release pass only: Blender's start-ups are most of it, and
+# the steadylight code it runs is the sanitized suite's already.
+slow_under_sanitizers+='|blender\.)'
 
 # Builds and runs the suite with the sanitizers of $1; further arguments go to ctest.
 sanitized_suite() {

@@ -1,0 +1,35 @@
+"""The steadylight panel in Render Properties, shown when steadylight is the render engine."""
+import bpy
+
+
+class RENDER_PT_steadylight(bpy.types.Panel):
+    bl_label = "steadylight"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "render"
+    COMPAT_ENGINES = {"STEADYLIGHT"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+    def draw(self, context):
+        settings = context.scene.steadylight
+        layout = self.layout
+        layout.use_property_split = True
+        layout.prop(settings, "method")
+        layout.prop(settings, "samples")
+        if settings.method != "path":
+            layout.prop(settings, "photons")
+        if settings.method in ("localized", "frozen"):
+            layout.prop(settings, "cache_accuracy")
+        layout.prop(settings, "chunk_frames")
+        layout.prop(context.scene.render, "film_transparent", text="Transparent Background")
+
+
+def register():
+    bpy.utils.register_class(RENDER_PT_steadylight)
+
+
+def unregister():
+    bpy.utils.unregister_class(RENDER_PT_steadylight)
