@@ -11,9 +11,9 @@ bl_info = {
     "category": "Render",
 }
 
-from . import engine, preferences, properties, ui  # noqa: E402 (after bl_info, as Blender reads it)
+from . import engine, farm, preferences, properties, ui  # noqa: E402 (after bl_info, as Blender reads it)
 
-MODULES = (properties, preferences, engine, ui)
+MODULES = (properties, preferences, engine, farm, ui)
 
 
 def register():

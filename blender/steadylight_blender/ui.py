@@ -23,8 +23,10 @@ class RENDER_PT_steadylight(bpy.types.Panel):
             layout.prop(settings, "photons")
         if settings.method in ("localized", "frozen"):
             layout.prop(settings, "cache_accuracy")
-        layout.prop(settings, "chunk_frames")
         layout.prop(context.scene.render, "film_transparent", text="Transparent Background")
+        layout.separator()
+        layout.prop(settings, "chunk_frames")
+        layout.operator("steadylight.submit", icon="NETWORK_DRIVE")
 
 
 def register():

@@ -8,6 +8,9 @@
 # - steadylight's EXRs from the add-on's run are byte for byte the command line's render of the
 #   same export with the same options;
 # - the passes the add-on registers are the layers of every method (check_passes.py);
+# - worlds (an HDRI, Blender's sky) and round lamps export as steadylight reads them
+#   (export_variants.py);
+# - Submit to Slurm writes the jobs of the same render (a dry run);
 # - a break after the first frame leaves a folder the next render resumes: the static cache
 #   loaded, frame 1 kept, frames 2 and 3 rendered;
 # - a steadylight too old for the add-on stops the render with a message saying so.
@@ -66,6 +69,9 @@ echo "the add-on's EXRs are the command line's, byte for byte"
 blender -b --factory-startup --addons steadylight_blender --python-exit-code 1 \
   --python "$here/check_passes.py" -- "$job/Scene.json" "$out/passes" 2>&1 | tee "$out/passes.log" | grep check_passes
 
+blender -b "$out/room.blend" --factory-startup --addons steadylight_blender --python-exit-code 1 \
+  --python "$here/export_variants.py" -- "$out/variants" 2>&1 | tee "$out/variants.log" | grep export_variants
+
 # A break after frame 1 (another sample count: another folder), then the render again.
 samples="import bpy; bpy.context.scene.steadylight.samples = 4"
 if STEADYLIGHT_ADDON_TEST_BREAK_AFTER=1 render "$out/broken/room_" --python-expr "$samples" > "$out/break.log" 2>&1; then
@@ -80,6 +86,18 @@ grep -q "static cache: .*loaded" "$broken/steadylight_blender.log" || { echo "th
 grep -q "2 frame(s) written, 1 complete ones skipped" "$broken/steadylight_blender.log" \
   || { echo "the resumed run did not keep frame 1 and render frames 2 and 3"; exit 1; }
 ls "$out"/resumed/room_000{1,2,3}.exr > /dev/null
+
+# Submit to Slurm, as a dry run (tests/farm/ runs real Slurm clusters): the job scripts of a bake,
+# one chunk and the finishing job, rendering with the add-on's options into the folder a render
+# from Blender would use.
+blender -b "$out/room.blend" --factory-startup --addons steadylight_blender --python-exit-code 1 \
+  --python-expr "import bpy; bpy.context.scene.steadylight.samples = 2; bpy.ops.steadylight.submit(dry_run=True)" \
+  > "$out/submit.log" 2>&1 || { tail -20 "$out/submit.log"; echo "Submit to Slurm failed"; exit 1; }
+grep -q "would run: sbatch --parsable .*/slurm/bake_0.sh" "$out/submit.log" \
+  && grep -q "would run: sbatch .*--array=0-0 .*/slurm/render_0.sh" "$out/submit.log" \
+  || { cat "$out/submit.log"; echo "Submit to Slurm did not show the bake and render jobs"; exit 1; }
+grep -q -- "--blender-view-layer ViewLayer .*--spp 2" "$(ls -d "$out"/room_steadylight/Scene_*/slurm/render_0.sh | head -1)" \
+  || { echo "the farm's chunks do not render with the add-on's options"; exit 1; }
 
 # A steadylight older than the add-on needs.
 mkdir -p "$out/old"
