@@ -8,7 +8,9 @@
 # localized frame over BALL's. The goals: that frame within 1.5x of BALL's, its ratio at least
 # BALL's. Last, what the localized frames did on average (from their statistics): photon paths
 # traced again, dynamic photons stored, L_y records, and each phase's seconds, which say where a
-# frame's time goes and how much of the light the moving object changes. Prints, asserts nothing.
+# frame's time goes and how much of the light the moving object changes; and the daylit frame
+# without its L_y phase, against BALL's whole frame: what making L_y free alone would reach.
+# Prints, asserts nothing.
 #   bash bench/daylight_bench.sh [--frames A-B] [--size WxH] [--photons N]   (default: 0-29, 320x240, 200000)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -58,15 +60,29 @@ print(f"daylit_room / ball, localized frame: {rows[('daylit_room', 'localized')]
       f"whole run {rows[('daylit_room', 'localized')][0] / rows[('ball', 'localized')][0]:.2f}x")
 PY
 echo "localized frames, mean per frame:"
-printf '%-12s %9s %9s %8s %8s %8s %8s %8s %8s\n' scene retraced dynamic records photons influence L_y L_t shading
-for scene in ball daylit_room; do
-  python3 - "$scene" "$work/${scene}_localized" <<'PY'
+python3 - "$work" <<'PY'
 import glob, json, sys
-scene, folder = sys.argv[1], sys.argv[2]
-stats = [json.load(open(f)) for f in sorted(glob.glob(folder + "/*.stats.json"))]
-mean = lambda get: sum(get(s) for s in stats) / len(stats)
-seconds = [mean(lambda s, k=k: s["seconds"][k]) for k in ("photon_tracing", "influence", "cache", "correction", "shading")]
-print(f"{scene:<12} {mean(lambda s: s['photons']['retraced_paths']):9.0f} {mean(lambda s: s['photons']['dynamic_stored']):9.0f} "
-      f"{mean(lambda s: s['irradiance_records']):8.0f} " + " ".join(f"{t:7.3f}s" for t in seconds))
+work = sys.argv[1]
+print(f"{'scene':<12} {'retraced':>9} {'dynamic':>9} {'records':>8} {'photons':>8} {'influence':>9} {'L_y':>8} {'L_t':>8} "
+      f"{'shading':>8} {'other':>8}")
+frame = {}
+for scene in ("ball", "daylit_room"):
+    stats = [json.load(open(f)) for f in sorted(glob.glob(f"{work}/{scene}_localized/*.stats.json"))]
+    mean = lambda get: sum(get(s) for s in stats) / len(stats)
+    phases = {k: mean(lambda s, k=k: s["seconds"][k]) for k in ("photon_tracing", "influence", "cache", "correction", "shading")}
+    total = mean(lambda s: s["seconds"]["total"])
+    frame[scene] = (total, total - phases["cache"])
+    print(f"{scene:<12} {mean(lambda s: s['photons']['retraced_paths']):9.0f} {mean(lambda s: s['photons']['dynamic_stored']):9.0f} "
+          f"{mean(lambda s: s['irradiance_records']):8.0f} " + " ".join(f"{t:8.3f}s" for t in phases.values())
+          + f" {total - sum(phases.values()):8.3f}s")
+photon = {}
+for line in open(f"{work}/table"):
+    f = line.split()
+    if f[1] == "photon":
+        photon[f[0]] = float(f[4])
+# Every phase but L_y scales with how much of the light the moving object changes; the frame
+# without L_y (as if it cost nothing) bounds what shrinking L_y alone can reach.
+without = frame["daylit_room"][1]
+print(f"daylit_room localized frame without L_y: {without:.3f} s = {without / frame['ball'][0]:.2f}x BALL's frame; "
+      f"photon / that {photon['daylit_room'] / without:.2f}x")
 PY
-done
