@@ -6,11 +6,14 @@ Run headless:
   blender -b --factory-startup --python scripts/cycles_reference.py -- \
       --frame 0 --samples 1024 --out /tmp/cycles_0000.exr [--filter box] [--lambert] [--seed N] \
       [--scene room|textured] [--json SCENE.json] [--size WxH]
+  blender -b FILE.blend --factory-startup --python scripts/cycles_reference.py -- --open-file ...
 
 `--scene textured` renders the textured room of scripts/make_blender_textured_room.py instead
 (no --lambert there: its materials are textured and glossy on purpose); `--json` a steadylight
 JSON scene such as scenes/daylit_room.json, with its world, suns and portals as Blender's
-(scripts/blender_from_json.py says how); `--size` overrides the scene's 320 x 240.
+(scripts/blender_from_json.py says how); `--open-file` the .blend Blender opened, as it is (its
+world and lamps: what the Blender add-on exports, docs/blender.md); `--size` overrides the
+scene's 320 x 240.
 
 The scene is built afresh by make_blender_scene.build_scene(), the same code that exports
 scenes/blender_room.glb, so both renderers see one scene. Cycles is set up to compute the same
@@ -55,6 +58,7 @@ def parse_args(argv):
     parser.add_argument("--threads", type=int, default=0, help="0: Blender's choice (all cores)")
     parser.add_argument("--scene", choices=("room", "textured"), default="room")
     parser.add_argument("--json", help="a steadylight JSON scene instead of --scene")
+    parser.add_argument("--open-file", action="store_true", help="the .blend Blender opened, instead of --scene")
     parser.add_argument("--size", help="WxH, instead of the scene's resolution")
     return parser.parse_args(argv[argv.index("--") + 1:] if "--" in argv else [])
 
@@ -125,15 +129,19 @@ def main(argv):
     size = [int(v) for v in args.size.split("x")] if args.size else None
     if args.json:
         blender_from_json.build_scene(args.json, args.frame, size)
+    elif args.open_file:
+        pass
     else:
         (make_blender_textured_room if args.scene == "textured" else make_blender_scene).build_scene()
     scene = bpy.context.scene
     if size:
         scene.render.resolution_x, scene.render.resolution_y = size
     if args.lambert:
+        # Materials without nodes (a grease pencil's, which a factory file holds) have no Principled.
         for material in bpy.data.materials:
-            use_lambert(material)
-    if not args.json:
+            if material.use_nodes and "Principled BSDF" in material.node_tree.nodes:
+                use_lambert(material)
+    if not args.json and not args.open_file:
         black_world(scene)
     set_up_cycles(scene, args)
     scene.frame_set(args.frame)
@@ -141,8 +149,9 @@ def main(argv):
     scene.render.use_file_extension = False
     start = time.time()
     bpy.ops.render.render(write_still=True)
-    print(f"cycles_reference: frame {args.frame}, {args.samples} spp, filter {args.filter}, "
-          f"{args.json or ('Diffuse BSDF' if args.lambert else 'Principled BSDF')}: {time.time() - start:.1f} s -> {args.out}")
+    source = args.json or (bpy.data.filepath if args.open_file else args.scene)
+    print(f"cycles_reference: {source}, frame {args.frame}, {args.samples} spp, filter {args.filter}, "
+          f"{'Diffuse BSDF' if args.lambert else 'Principled BSDF'}: {time.time() - start:.1f} s -> {args.out}")
 
 
 if __name__ == "__main__":

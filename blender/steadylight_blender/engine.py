@@ -87,7 +87,9 @@ class SteadylightRenderEngine(bpy.types.RenderEngine):
         scene = depsgraph.scene
         frame = scene.frame_current
         try:
-            job = self.job_for(scene, depsgraph.view_layer.name, frame)
+            job = self.job_for(scene, depsgraph.view_layer.name)
+            if depsgraph.view_layer.name != job.view_layer:
+                return  # the export warned: one view layer is rendered
             if not job.covers(frame):
                 job.stop()
                 job.start(frame, whole_range=self.is_animation)
@@ -103,7 +105,7 @@ class SteadylightRenderEngine(bpy.types.RenderEngine):
             current["error"] = str(error)
             self.report({"ERROR"}, f"steadylight: {error}")
 
-    def job_for(self, scene, view_layer, frame):
+    def job_for(self, scene, view_layer):
         if current["error"] is not None:
             raise ProgramError(current["error"])
         if current["job"] is None:

@@ -220,6 +220,10 @@ def lamp_specs(scene, export):
 
 def unsupported_features(scene, export):
     """Warnings for what Blender renders and steadylight does not."""
+    layers = [layer.name for layer in scene.view_layers if layer.use]
+    if len(layers) > 1:
+        export.warn(f"view layers {', '.join(layers[1:])}: only the first, {layers[0]}, is rendered (steadylight "
+                    "renders the whole scene once)")
     if scene.render.use_motion_blur:
         export.warn("motion blur is not carried: frames are rendered at their instant")
     camera = scene.camera

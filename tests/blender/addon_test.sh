@@ -10,6 +10,7 @@
 # - the passes the add-on registers are the layers of every method (check_passes.py);
 # - worlds (an HDRI, Blender's sky) and round lamps export as steadylight reads them
 #   (export_variants.py);
+# - a transparent film gives Combined an alpha of 0 where the world is seen;
 # - Submit to Slurm writes the jobs of the same render (a dry run);
 # - a break after the first frame leaves a folder the next render resumes: the static cache
 #   loaded, frame 1 kept, frames 2 and 3 rendered;
@@ -98,6 +99,20 @@ grep -q "would run: sbatch --parsable .*/slurm/bake_0.sh" "$out/submit.log" \
   || { cat "$out/submit.log"; echo "Submit to Slurm did not show the bake and render jobs"; exit 1; }
 grep -q -- "--blender-view-layer ViewLayer .*--spp 2" "$(ls -d "$out"/room_steadylight/Scene_*/slurm/render_0.sh | head -1)" \
   || { echo "the farm's chunks do not render with the add-on's options"; exit 1; }
+
+# Film > Transparent: Combined's alpha is 0 where the camera sees the world through the window.
+blender -b "$out/room.blend" --factory-startup --addons steadylight_blender \
+  --python-expr "import bpy; bpy.context.scene.render.film_transparent = True" -E STEADYLIGHT \
+  -o "$out/transparent/room_####" -F OPEN_EXR_MULTILAYER -f 2 > "$out/transparent.log" 2>&1
+here=$here python3 - "$out/transparent/room_0002.exr" <<'PY'
+import os, sys
+sys.path.insert(0, os.environ["here"])
+import exr_file
+alpha = exr_file.read_exr(sys.argv[1])[0]["ViewLayer.Combined.A"]
+see_world = sum(a == 0 for a in alpha)
+assert 50 < see_world < len(alpha) / 2 and max(alpha) == 1, f"{see_world} pixels of alpha 0, max {max(alpha)}"
+print(f"a transparent film: alpha 0 at the {see_world} pixels that see the sky")
+PY
 
 # A steadylight older than the add-on needs.
 mkdir -p "$out/old"
