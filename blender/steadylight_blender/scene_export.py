@@ -112,7 +112,7 @@ def environment_spec(world, texture, strength, export):
                     or any(abs(v - 1) > 1e-6 for v in scale):
                 export.warn(f"world {world.name}: only the Mapping node's Z rotation is carried, not its "
                             "location, scale or X and Y rotations")
-            rotation = math.degrees(rz)
+            rotation = math.fmod(math.degrees(rz), 360)  # steadylight takes [-360, 360]
         else:
             export.warn(f"world {world.name}: a {mapping.bl_idname} into the Environment Texture's Vector is "
                         "not carried (a Mapping node of type Point is)")
@@ -201,7 +201,7 @@ def lamp_specs(scene, export):
         if obj.type != "LIGHT" or obj.hide_render:
             continue
         lamp = obj.data
-        if obj.animation_data is not None or lamp.animation_data is not None:
+        if any(data.animation_data is not None and data.animation_data.action is not None for data in (obj, lamp)):
             export.warn(f"lamp {obj.name}: animated lamps stay where they are at the first frame")
         if lamp.type == "SUN":
             sun_angles[obj.name] = round(math.degrees(lamp.angle), 6)
