@@ -47,7 +47,7 @@ class Export:
     def __init__(self, name):
         self.name = name
         self.warnings = []
-        self.meshes = {}  # file name -> OBJ text (disc and ellipse lamps)
+        self.files = {}  # file name -> its bytes (disc and ellipse lamps' OBJs, a packed world image)
         self.copies = {}  # file name -> the file copied there (the world image)
 
     def warn(self, message):
@@ -95,10 +95,10 @@ def environment_spec(world, texture, strength, export):
     if texture.projection != "EQUIRECTANGULAR":
         export.warn(f"world {world.name}: a {texture.projection.lower()} Environment Texture is read as "
                     "equirectangular")
-    path = bpy.path.abspath(texture.image.filepath, library=texture.image.library)
-    if texture.image.packed_file is not None or not os.path.isfile(path):
-        export.warn(f"world {world.name}: the image {texture.image.name} is not a file on disk "
-                    "(packed or missing): the world is left black")
+    image = texture.image
+    path = bpy.path.abspath(image.filepath, library=image.library)
+    if image.packed_file is None and not os.path.isfile(path):
+        export.warn(f"world {world.name}: the image {image.name} is missing ({path}): the world is left black")
         return None
     rotation = 0.0
     vector = texture.inputs["Vector"]
@@ -118,8 +118,16 @@ def environment_spec(world, texture, strength, export):
                         "not carried (a Mapping node of type Point is)")
     # Copied beside the scene, so that the folder renders anywhere (a farm's workers confine
     # their inputs to the scene file's folder).
-    file_name = export.name + "_world" + os.path.splitext(path)[1].lower()
-    export.copies[file_name] = os.path.abspath(path)
+    extension = {"OPEN_EXR": ".exr", "OPEN_EXR_MULTILAYER": ".exr", "HDR": ".hdr"}.get(image.file_format)
+    if extension is None:
+        export.warn(f"world {world.name}: the image {image.name} is {image.file_format}; steadylight reads "
+                    "OpenEXR and Radiance HDR world images: the world is left black")
+        return None
+    file_name = export.name + "_world" + extension
+    if image.packed_file is not None:
+        export.files[file_name] = bytes(image.packed_file.data)
+    else:
+        export.copies[file_name] = os.path.abspath(path)
     return {"image": file_name, "strength": strength, "rotation_degrees": round(rotation, 6)}
 
 
@@ -186,10 +194,10 @@ def area_lamp_object(obj, export):
                   + y * (0.5 * math.sin(-2 * math.pi * i / DISC_SEGMENTS)) for i in range(DISC_SEGMENTS)]
         polygon_area = DISC_SEGMENTS / 2 * math.sin(2 * math.pi / DISC_SEGMENTS) * x.length * y.length / 4
         radiance = [r * area / polygon_area for r in radiance]
-        file_name = f"{export.name}_lamp{len(export.meshes)}.obj"
+        file_name = f"{export.name}_lamp{sum(name.endswith('.obj') for name in export.files)}.obj"
         lines = [f"v {' '.join(f'{c:.6f}' for c in to_steadylight(p))}" for p in [centre] + points]
         lines += [f"f 1 {i + 2} {(i + 1) % DISC_SEGMENTS + 2}" for i in range(DISC_SEGMENTS)]
-        export.meshes[file_name] = "\n".join(lines) + "\n"
+        export.files[file_name] = ("\n".join(lines) + "\n").encode()
         shape = {"type": "mesh", "file": file_name}
     return {"name": obj.name, "shape": shape, "emission": rounded(radiance)}
 
@@ -295,9 +303,9 @@ def export_scene(scene, folder, name):
         wrapper["portals"] = portals
     for file_name, source in export.copies.items():
         shutil.copyfile(source, os.path.join(folder, file_name))
-    for file_name, text in export.meshes.items():
-        with open(os.path.join(folder, file_name), "w") as f:
-            f.write(text)
+    for file_name, data in export.files.items():
+        with open(os.path.join(folder, file_name), "wb") as f:
+            f.write(data)
     with open(os.path.join(folder, name + ".json"), "w") as f:
         json.dump(wrapper, f, indent=2)
     return export

@@ -4,7 +4,8 @@ writes for the worlds and lamps the room itself does not have, and that steadyli
     blender -b ROOM.blend --factory-startup --addons steadylight_blender --python export_variants.py -- OUT
 
 - an Environment Texture (one of Blender's own HDRIs) through a Mapping node turned by 30
-  degrees: the image copied beside the scene, the rotation and strength carried;
+  degrees: the image copied beside the scene, the rotation and strength carried; packed into
+  the .blend, written out beside the scene;
 - disc and ellipse lamps: emitting polygons whose radiance times area is the lamp's power / 4
   (Cycles' radiance P / (4 A), over the polygon);
 - a Nishita Sky Texture: Blender's parameters in degrees;
@@ -83,6 +84,14 @@ for emitter in wrapper["objects"]:
         check(cross[1] < 0, f"{emitter['name']}: a triangle faces up, not down the lamp's -z")
     power = emitter["emission"][0] * area * 4
     check(abs(power - 20) < 1e-3, f"{emitter['name']}: radiance x area x 4 is {power} W, not the lamp's 20 W")
+
+# The same image packed into the .blend: written out beside the scene, byte for byte.
+texture.image.pack()
+wrapper, warnings, info, folder = export("packed")
+with open(os.path.join(folder, "packed_world.exr"), "rb") as written, \
+        open("/usr/share/blender/datafiles/studiolights/world/forest.exr", "rb") as original:
+    check(written.read() == original.read(), "the packed world image is not written out as it is")
+check(wrapper.get("world", {}).get("image") == "packed_world.exr", f"packed: {wrapper.get('world')}")
 
 # Blender's sky.
 sky = world.nodes.new("ShaderNodeTexSky")
