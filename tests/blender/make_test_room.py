@@ -6,20 +6,14 @@ pixels. Runs inside Blender:
     blender -b --factory-startup --python tests/blender/make_test_room.py -- OUT.blend
 """
 import math
+import os
 import sys
 
 import bpy
 from mathutils import Vector
 
-
-def material(name, colour):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    principled = mat.node_tree.nodes["Principled BSDF"]
-    principled.inputs["Base Color"].default_value = (*colour, 1)
-    principled.inputs["Roughness"].default_value = 1
-    principled.inputs["Specular"].default_value = 0
-    return mat
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from make_blender_scene import principled  # noqa: E402 (the Blender room's rough, Specular 0 material)
 
 
 def box(name, centre, size, mat):
@@ -40,7 +34,7 @@ def build(path):
     scene.render.fps = 24
     scene.frame_start, scene.frame_end = 1, 3
 
-    white, red = material("White", (0.8, 0.8, 0.8)), material("Red", (0.8, 0.1, 0.1))
+    white, red = principled("White", (0.8, 0.8, 0.8)), principled("Red", (0.8, 0.1, 0.1))
     t = 0.1  # wall thickness
     box("Floor", (0, 0, -t / 2), (4 + 2 * t, 4 + 2 * t, t), white)
     box("Ceiling", (0, 0, 3 + t / 2), (4 + 2 * t, 4 + 2 * t, t), white)

@@ -455,6 +455,16 @@ TEST_F(GltfLoader, CameraIsIgnoredWhenTheSceneAlreadyHasOne) {
     EXPECT_EQ(desc.camera.height, 240);
 }
 
+/// `light` added to `model` on a node named `name` at `position`, turned so that its -z points down.
+void add_light_shining_down(tinygltf::Model& model, const tinygltf::Light& light, const std::string& name,
+                            std::vector<double> position) {
+    model.lights.push_back(light);
+    tinygltf::Node node = make_node(name, -1, position);
+    node.rotation = {-std::sin(pi / 4), 0, 0, std::cos(pi / 4)};  // -z turned to -y
+    node.extensions["KHR_lights_punctual"] = number_object("light", int(model.lights.size()) - 1);
+    add_node(model, node);
+}
+
 TEST_F(GltfLoader, SpotLightBecomesPointLightDesc) {
     tinygltf::Model model;
     tinygltf::Light light;
@@ -463,11 +473,7 @@ TEST_F(GltfLoader, SpotLightBecomesPointLightDesc) {
     light.intensity = 10;
     light.spot.innerConeAngle = pi / 8;
     light.spot.outerConeAngle = pi / 4;
-    model.lights.push_back(light);
-    tinygltf::Node node = make_node("Spot", -1, {0, 3, 0});
-    node.rotation = {-std::sin(pi / 4), 0, 0, std::cos(pi / 4)};  // -z turned to -y
-    node.extensions["KHR_lights_punctual"] = number_object("light", 0);
-    add_node(model, node);
+    add_light_shining_down(model, light, "Spot", {0, 3, 0});
     for (const Loaded& loaded : write_and_load(model)) {
         SCOPED_TRACE(loaded.path);
         ASSERT_EQ(loaded.desc.point_lights.size(), 1u);
@@ -489,11 +495,7 @@ TEST_F(GltfLoader, DirectionalLightBecomesASunWhoseAngleAWrapperGivesByName) {
     light.type = "directional";
     light.color = {1, 0.5, 0.25};
     light.intensity = 683 * 4;
-    model.lights.push_back(light);
-    tinygltf::Node node = make_node("Sun", -1, {0, 10, 0});
-    node.rotation = {-std::sin(pi / 4), 0, 0, std::cos(pi / 4)};  // -z turned to -y
-    node.extensions["KHR_lights_punctual"] = number_object("light", 0);
-    add_node(model, node);
+    add_light_shining_down(model, light, "Sun", {0, 10, 0});
     for (const Loaded& loaded : write_and_load(model)) {
         SCOPED_TRACE(loaded.path);
         ASSERT_EQ(loaded.desc.suns.size(), 1u);
