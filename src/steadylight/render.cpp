@@ -427,7 +427,7 @@ std::string describe_scene(const std::string& scene_file, bool confine_inputs) {
         const auto* mesh = std::get_if<TriangleMesh>(&object.geometry);
         const long count = mesh ? long(mesh->indices.size() / 3) : 0;
         area_lights += object.is_emitter();
-        animated_lights += object.is_emission_animated();
+        animated_lights += object.is_emitter() && (object.is_emission_animated() || object.is_dynamic());
         const char* emitter = object.is_emission_animated() ? "emitter, animated emission"
                               : object.is_emitter()         ? "emitter"
                                                             : "";
@@ -436,22 +436,35 @@ std::string describe_scene(const std::string& scene_file, bool confine_inputs) {
                         mesh ? fmt::format("{} tris", count) : "sphere", desc.materials[size_t(object.material)].name,
                         emitter, object.marked_dynamic && !is_chain_animated(object.placement) ? " (marked)" : "");
     }
-    for (const PointLightDesc& light : desc.point_lights) animated_lights += light.is_intensity_animated();
+    for (const PointLightDesc& light : desc.point_lights)
+        animated_lights += light.is_intensity_animated() || light.is_moving();
+    for (const SunLightDesc& sun : desc.suns) animated_lights += sun.is_moving();
     text += fmt::format("objects: {} ({} static, {} dynamic), {} triangles\n", desc.objects.size(),
                         scene.static_objects().size(), scene.dynamic_objects().size(), triangle_count(desc));
     text += objects;
     text +=
         fmt::format("lights: {} area, {} point/spot, {} sun", area_lights, desc.point_lights.size(), desc.suns.size());
     text += animated_lights
-                ? fmt::format(", {} animated (switched or dimmed; a new segment where they change)\n", animated_lights)
+                ? fmt::format(", {} animated (switched, dimmed or moved; a new segment where they change)\n",
+                              animated_lights)
                 : std::string("\n");
-    for (const PointLightDesc& light : desc.point_lights)
-        text += fmt::format("  {:<20} {}{}\n", light.name, light.type == PointLightType::point ? "point" : "spot",
-                            light.is_intensity_animated() ? ", animated intensity" : "");
-    for (const SunLightDesc& sun : desc.suns)
-        text += fmt::format("  {:<20} sun, travelling ({:.3f}, {:.3f}, {:.3f}), {:.3g} W/m² (luminance), {:.2f}°\n",
-                            sun.name, sun.direction.x, sun.direction.y, sun.direction.z, luminance(sun.irradiance),
-                            sun.angle_deg);
+    const FrameState first = scene.evaluate(0);
+    for (size_t i = 0; i < desc.point_lights.size(); ++i) {
+        const PointLightDesc& light = desc.point_lights[i];
+        const Vec3 p = first.point_lights[i].position;
+        text += fmt::format("  {:<20} {}{}{}, at ({:.3g}, {:.3g}, {:.3g}){}\n", light.name,
+                            light.type == PointLightType::point ? "point" : "spot",
+                            light.is_moving() ? ", moves" : ", still",
+                            light.is_intensity_animated() ? ", animated intensity" : "", p.x, p.y, p.z,
+                            light.is_moving() ? " at frame 0" : "");
+    }
+    for (size_t i = 0; i < desc.suns.size(); ++i) {
+        const SunLightDesc& sun = desc.suns[i];
+        const Vec3 d = first.sun_directions[i];
+        text += fmt::format("  {:<20} sun{}, travelling ({:.3f}, {:.3f}, {:.3f}){}, {:.3g} W/m² (luminance), {:.2f}°\n",
+                            sun.name, sun.is_moving() ? ", moves" : ", still", d.x, d.y, d.z,
+                            sun.is_moving() ? " at frame 0" : "", luminance(sun.irradiance), sun.angle_deg);
+    }
     if (desc.world) {
         text += fmt::format("world: {}\n", desc.world->description);
     } else {

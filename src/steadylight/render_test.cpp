@@ -143,12 +143,22 @@ TEST_F(RenderResume, TransparentBackgroundWritesAlphaAndIsASetting) {
     EXPECT_NEAR(corner.b, 0.5f, 1e-3f);
 }
 
+TEST(Info, NamesMovingLightsAndTheSegmentsTheyMake) {
+    const std::string text = describe_scene(std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/scenes/moving_lamps.json");
+    EXPECT_NE(text.find("3 segment(s): 0-0, 1-1, 2-2"), std::string::npos) << text;
+    EXPECT_NE(text.find("lights: 0 area, 1 point/spot, 1 sun, 2 animated (switched, dimmed or moved"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("spot, moves, at (1, 2.6, 1) at frame 0"), std::string::npos) << text;
+    EXPECT_NE(text.find("sun, moves, travelling (0.796, -0.557, 0.239) at frame 0"), std::string::npos) << text;
+}
+
 TEST(Info, NamesAnimatedLightsAndTheSegmentsTheyMake) {
     const std::string text = describe_scene(std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/scenes/light_switch.json");
     EXPECT_NE(text.find("2 segment(s): 0-9, 10-19"), std::string::npos) << text;
     EXPECT_NE(text.find("emitter, animated emission"), std::string::npos) << text;
     EXPECT_NE(text.find("lights: 1 area, 1 point/spot, 0 sun, 2 animated"), std::string::npos) << text;
-    EXPECT_NE(text.find("spot, animated intensity"), std::string::npos) << text;
+    EXPECT_NE(text.find("spot, still, animated intensity, at (1, 1.5, 0)"), std::string::npos) << text;
 }
 
 }  // namespace

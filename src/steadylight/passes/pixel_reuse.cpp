@@ -174,8 +174,7 @@ bool same_view_and_lights(const Scene& scene, const FrameState& frame, const Fra
     if (!(a.world_from_camera == b.world_from_camera) || a.tan_half_fov_y != b.tan_half_fov_y || a.width != b.width ||
         a.height != b.height)
         return false;
-    if (frame.emission != static_frame.emission || frame.point_light_intensity != static_frame.point_light_intensity)
-        return false;
+    if (!frame.same_lights(static_frame)) return false;
     for (const int object : scene.dynamic_objects())
         if (!is_black(frame.emission[size_t(object)])) return false;
     return true;

@@ -69,10 +69,14 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         }
     for (size_t i = 0; i < scene.desc().point_lights.size(); ++i) {
         const PointLightDesc& light = scene.desc().point_lights[i];
-        h.add(int(light.type)), h.add(light.position), h.add(light.direction), h.add(state.point_light_intensity[i]);
+        const PointLightPose& pose = state.point_lights[i];
+        h.add(int(light.type)), h.add(pose.position), h.add(pose.direction), h.add(pose.intensity);
         h.add(light.cone_angle_deg), h.add(light.falloff_start_deg);
     }
-    for (const SunLightDesc& sun : scene.desc().suns) h.add(sun.direction), h.add(sun.irradiance), h.add(sun.angle_deg);
+    for (size_t i = 0; i < scene.desc().suns.size(); ++i) {
+        const SunLightDesc& sun = scene.desc().suns[i];
+        h.add(state.sun_directions[i]), h.add(sun.irradiance), h.add(sun.angle_deg);
+    }
     if (const std::optional<WorldDesc>& world = scene.desc().world) h.add(world->radiance->hash());
     for (const PortalDesc& portal : scene.desc().portals)
         h.add(portal.corner), h.add(portal.edge_u), h.add(portal.edge_v);

@@ -67,9 +67,8 @@ DistantPhotonTargets find_distant_photon_targets(const Scene& scene, const RayTr
                 const Vec3 w = basis.to_world(sample_cosine_hemisphere(rng.next_vec2()));
                 if (leaves(w)) found[size_t(index)].emplace_back(-w, sp.p);
             }
-            for (const SunLightDesc& sun : scene.desc().suns)
-                if (dot(sun.direction, n) < 0 && leaves(-sun.direction))
-                    found[size_t(index)].emplace_back(sun.direction, sp.p);
+            for (const Vec3 sun : state.sun_directions)
+                if (dot(sun, n) < 0 && leaves(-sun)) found[size_t(index)].emplace_back(sun, sp.p);
         }
     });
     std::vector<std::pair<Vec3, Vec3>> crossings;

@@ -4,6 +4,8 @@
 #include "steadylight/scene/environment_map.h"
 
 #include <gtest/gtest.h>
+#include <pmmintrin.h>
+#include <xmmintrin.h>
 
 #include <cmath>
 #include <tuple>
@@ -331,6 +333,10 @@ TEST(EnvironmentMap, FacingSamplesGoWhereTheSurfaceSeesLight) {
 // Sampling follows the picture, not its units: an image scaled down to the smallest floats or up
 // towards the largest gives the same pdf.
 TEST(EnvironmentMap, PdfDoesNotDependOnTheImagesScale) {
+    // Scenes load on the main thread, with denormals as the C++ default keeps them; a test that
+    // ran a parallel loop before, in the same process, left the render threads' flush-to-zero on.
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_OFF);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_OFF);
     Image image = smooth_image(64, 32);
     image.at(5, 5) = {};
     const EnvironmentMap reference(image, 1, 0);

@@ -366,22 +366,24 @@ void SceneWalker::add_light(const tinygltf::Node& node, const std::vector<Animat
         m_file.warn_once(light.type + " lights are ignored", where);
         return;
     }
-    if (is_chain_animated(chain)) m_file.warn_once("animated lights stay where they are at time 0", where);
-    const Transform world_from_light = evaluate_chain(chain, 0);
+    // A light sits at its node's origin and shines down the node's -z; the node and its
+    // ancestors place it in the world, and move it where they are animated.
     const Rgb color = light.color.empty() ? Rgb{1, 1, 1} : clamped_rgb(light.color);
     if (light.type == "directional") {
         // Illuminance in lux; Blender writes W/m² × 683 (docs/gltf.md). glTF has no sun angle:
         // the real sun's, unless a wrapper JSON sets it by the node's name.
         m_desc.suns.push_back({.name = !node.name.empty() ? node.name : "sun " + std::to_string(light_index),
-                               .direction = normalize(world_from_light.vector({0, 0, -1})),
-                               .irradiance = color * float(std::max(light.intensity, 0.0) / lumens_per_watt)});
+                               .direction = {0, 0, -1},
+                               .irradiance = color * float(std::max(light.intensity, 0.0) / lumens_per_watt),
+                               .placement = chain});
         return;
     }
     PointLightDesc desc{.name = !light.name.empty() ? light.name : "light " + std::to_string(light_index),
                         .type = light.type == "spot" ? PointLightType::spot : PointLightType::point,
-                        .position = world_from_light.point({}),
-                        .direction = normalize(world_from_light.vector({0, 0, -1})),
-                        .intensity = color * float(std::max(light.intensity, 0.0) / lumens_per_watt)};
+                        .position = {},
+                        .direction = {0, 0, -1},
+                        .intensity = color * float(std::max(light.intensity, 0.0) / lumens_per_watt),
+                        .placement = chain};
     if (desc.type == PointLightType::spot) {
         desc.cone_angle_deg = std::clamp(float(light.spot.outerConeAngle) * deg_per_rad, 0.01f, 90.0f);
         desc.falloff_start_deg = std::clamp(float(light.spot.innerConeAngle) * deg_per_rad, 0.0f, desc.cone_angle_deg);

@@ -479,8 +479,9 @@ TEST_F(GltfLoader, SpotLightBecomesPointLightDesc) {
         ASSERT_EQ(loaded.desc.point_lights.size(), 1u);
         const PointLightDesc& spot = loaded.desc.point_lights[0];
         EXPECT_EQ(spot.type, PointLightType::spot);
-        expect_near(spot.position, {0, 3, 0});
-        expect_near(spot.direction, {0, -1, 0});
+        EXPECT_FALSE(spot.is_moving());
+        expect_near(spot.pose_at(0).position, {0, 3, 0});
+        expect_near(spot.pose_at(0).direction, {0, -1, 0});
         expect_near(spot.intensity, Rgb{10, 5, 5} / 683.0f);  // candela to W/sr at 683 lm/W
         EXPECT_NEAR(spot.cone_angle_deg, 45, 1e-4);
         EXPECT_NEAR(spot.falloff_start_deg, 22.5, 1e-4);
@@ -501,7 +502,7 @@ TEST_F(GltfLoader, DirectionalLightBecomesASunWhoseAngleAWrapperGivesByName) {
         ASSERT_EQ(loaded.desc.suns.size(), 1u);
         const SunLightDesc& sun = loaded.desc.suns[0];
         EXPECT_EQ(sun.name, "Sun");
-        expect_near(sun.direction, {0, -1, 0});
+        expect_near(sun.direction_at(0), {0, -1, 0});
         expect_near(sun.irradiance, Rgb{4, 2, 1});
         EXPECT_EQ(sun.angle_deg, SunLightDesc::default_sun_angle_deg);
     }
@@ -553,6 +554,42 @@ TEST_F(GltfLoader, StepRotationHoldsEachKeyUntilTheNext) {
         EXPECT_EQ(turner.placement[0].rotation_track->interpolation, Interpolation::step);
         expect_near(world_vertex(turner, 1, 0.99f), {1, 0, 0});
         expect_near(world_vertex(turner, 1, 1.01f), {0, 1, 0});
+    }
+}
+
+// A lamp moves with its node and the node's parents; a sun turns with its node.
+TEST_F(GltfLoader, AnimatedLightsMoveWithTheirNodesAndParents) {
+    tinygltf::Model model = camera_model();
+    const int carrier = add_node(model, make_node("Carrier", -1));
+    add_animation(model, carrier, "translation", "LINEAR", {0, 2}, {0, 0, 0, 4, 0, 0});
+    tinygltf::Light spot;
+    spot.type = "spot";
+    spot.intensity = 683;
+    model.lights.push_back(spot);
+    tinygltf::Node torch = make_node("Torch", -1, {0, 3, 0});
+    torch.rotation = {-std::sin(pi / 4), 0, 0, std::cos(pi / 4)};  // -z turned to -y
+    torch.extensions["KHR_lights_punctual"] = number_object("light", 0);
+    add_node(model, torch, carrier);
+    tinygltf::Light sun;
+    sun.type = "directional";
+    sun.intensity = 683;
+    add_light_shining_down(model, sun, "Sun", {0, 10, 0});
+    // The sun's node turns in 2 s from shining down to shining along +x.
+    const float s = std::sin(pi / 4), c = std::cos(pi / 4);
+    add_animation(model, int(model.nodes.size()) - 1, "rotation", "LINEAR", {0, 2}, {-s, 0, 0, c, 0, -s, 0, c});
+    for (const Loaded& loaded : write_and_load(model)) {
+        SCOPED_TRACE(loaded.path);
+        ASSERT_EQ(loaded.desc.point_lights.size(), 1u);
+        ASSERT_EQ(loaded.desc.suns.size(), 1u);
+        const PointLightDesc& lamp = loaded.desc.point_lights[0];
+        EXPECT_TRUE(lamp.is_moving());
+        expect_near(lamp.pose_at(0).position, {0, 3, 0});
+        expect_near(lamp.pose_at(1).position, {2, 3, 0});
+        expect_near(lamp.pose_at(2).direction, {0, -1, 0});
+        const SunLightDesc& moving_sun = loaded.desc.suns[0];
+        EXPECT_TRUE(moving_sun.is_moving());
+        expect_near(moving_sun.direction_at(0), {0, -1, 0});
+        expect_near(moving_sun.direction_at(2), {1, 0, 0});
     }
 }
 

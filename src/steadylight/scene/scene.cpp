@@ -24,25 +24,22 @@ std::optional<Vec2> Camera::project(Vec3 p) const {
 
 namespace {
 
-std::vector<Rgb> emissions_at(const SceneDesc& desc, float time_s) {
-    std::vector<Rgb> emissions;
-    emissions.reserve(desc.objects.size());
-    for (const ObjectDesc& object : desc.objects) emissions.push_back(object.emission_at(time_s));
-    return emissions;
+/// Sets the lights of `state`: emissions, lamps and suns at `time_s`.
+void evaluate_lights(const SceneDesc& desc, float time_s, FrameState& state) {
+    state.emission.reserve(desc.objects.size());
+    for (const ObjectDesc& object : desc.objects) state.emission.push_back(object.emission_at(time_s));
+    state.point_lights.reserve(desc.point_lights.size());
+    for (const PointLightDesc& light : desc.point_lights) state.point_lights.push_back(light.pose_at(time_s));
+    state.sun_directions.reserve(desc.suns.size());
+    for (const SunLightDesc& sun : desc.suns) state.sun_directions.push_back(sun.direction_at(time_s));
 }
 
-std::vector<Rgb> point_light_intensities_at(const SceneDesc& desc, float time_s) {
-    std::vector<Rgb> intensities;
-    intensities.reserve(desc.point_lights.size());
-    for (const PointLightDesc& light : desc.point_lights) intensities.push_back(light.intensity_at(time_s));
-    return intensities;
-}
-
-/// True when some emission or lamp intensity at `frame` differs from the frame before.
+/// True when some light at `frame` is switched, dimmed or moved from the frame before.
 bool lights_change_at(const SceneDesc& desc, int frame) {
-    const float before = desc.frame_time_s(frame - 1), now = desc.frame_time_s(frame);
-    return emissions_at(desc, now) != emissions_at(desc, before) ||
-           point_light_intensities_at(desc, now) != point_light_intensities_at(desc, before);
+    FrameState before, now;
+    evaluate_lights(desc, desc.frame_time_s(frame - 1), before);
+    evaluate_lights(desc, desc.frame_time_s(frame), now);
+    return !now.same_lights(before);
 }
 
 std::vector<Segment> split_into_segments(const SceneDesc& desc) {
@@ -125,8 +122,7 @@ FrameState Scene::evaluate(int frame) const {
     state.world_from_object.reserve(m_desc.objects.size());
     for (const ObjectDesc& object : m_desc.objects)
         state.world_from_object.push_back(evaluate_chain(object.placement, state.time_s));
-    state.emission = emissions_at(m_desc, state.time_s);
-    state.point_light_intensity = point_light_intensities_at(m_desc, state.time_s);
+    evaluate_lights(m_desc, state.time_s, state);
     return state;
 }
 

@@ -46,7 +46,14 @@ struct FrameState {
     Camera camera;
     std::vector<Transform> world_from_object;  // one per object
     std::vector<Rgb> emission;                 // one per object: its emitted radiance (black: off, or no light)
-    std::vector<Rgb> point_light_intensity;    // one per point or spot light (black: off)
+    std::vector<PointLightPose> point_lights;  // one per point or spot light (black intensity: off)
+    std::vector<Vec3> sun_directions;          // one per sun: the way its light travels
+
+    /// True when every light, lamps and suns, is where and as bright as in `other` (the same scene).
+    bool same_lights(const FrameState& other) const {
+        return emission == other.emission && point_lights == other.point_lights &&
+               sun_directions == other.sun_directions;
+    }
 };
 
 class Scene {
@@ -61,13 +68,14 @@ public:
     const std::vector<int>& dynamic_objects() const { return m_dynamic; }
     int frame_count() const { return m_desc.frame_count; }
     /// The animation's segments (docs/design.md): one by default; a new one where the scene file
-    /// says, at every frame where an emission or a lamp's intensity differs from the frame
-    /// before (a light switched or dimmed), and every frame on its own while an emitter moves
-    /// (its light changes every frame). Within a segment the lights are constant.
+    /// says, at every frame where an emission, a lamp's intensity, place or direction or a sun's
+    /// direction differs from the frame before (a light switched, dimmed or moved), and every
+    /// frame on its own while an emitter moves (its light changes every frame). Within a
+    /// segment the lights are constant.
     const std::vector<Segment>& segments() const { return m_segments; }
     const Segment& segment_of(int frame) const;
 
-    /// The camera, object placements, emissions and lamp intensities at `frame` (any integer;
+    /// The camera, object placements, emissions, and lamps and suns at `frame` (any integer;
     /// time is frame / fps).
     FrameState evaluate(int frame) const;
     /// Overrides the output resolution (from --size), keeping everything else.

@@ -85,9 +85,14 @@ Track<Rgb> parse_light_track(const JsonObject& json, const std::string& what) {
 }
 
 Vec3 vec3_from(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
-Quat quat_from(const std::vector<float>& v) {
-    const Quat q{v[0], v[1], v[2], v[3]};
-    return dot(q, q) > 0 ? normalize(q) : Quat{};
+
+/// A track of quaternions [x, y, z, w], none of them zero (it would turn nothing into nowhere).
+Track<Quat> parse_rotation_track(const JsonObject& json) {
+    std::vector<Quat> values;
+    const std::vector<std::vector<float>> keys = json.tuples("values", 4);
+    for (size_t i = 0; i < keys.size(); ++i)
+        values.push_back(quat_from_numbers(keys[i], json, "values/" + std::to_string(i)));
+    return parse_track_keys(json, std::move(values));
 }
 
 /// "transform": {translation, rotation, scale}.
@@ -107,8 +112,17 @@ AnimatedTrs parse_transform(const JsonObject& json) {
 void parse_trs_tracks(const JsonObject& animation, AnimatedTrs& trs) {
     if (animation.has("translation"))
         trs.translation_track = parse_track<Vec3>(animation.object("translation"), 3, vec3_from);
-    if (animation.has("rotation")) trs.rotation_track = parse_track<Quat>(animation.object("rotation"), 4, quat_from);
+    if (animation.has("rotation")) trs.rotation_track = parse_rotation_track(animation.object("rotation"));
     if (animation.has("scale")) trs.scale_track = parse_track<Vec3>(animation.object("scale"), 3, vec3_from);
+}
+
+/// A light's "translation" (when it has a position) and "rotation" tracks; lights have no size,
+/// so no "scale".
+void parse_light_motion(const JsonObject& animation, AnimatedTrs& trs, bool has_position) {
+    if (animation.has("scale")) animation.fail("scale", "a light has no size to scale");
+    if (animation.has("translation") && !has_position)
+        animation.fail("translation", "a sun has no position; a rotation track turns its direction");
+    parse_trs_tracks(animation, trs);
 }
 
 /// "transform" and "animation" (translation, rotation and scale tracks only).
@@ -249,16 +263,20 @@ PointLightDesc parse_point_light(const JsonObject& json) {
         json.fail("type", "unknown light type \"" + type + "\" (point, spot or sun)");
     }
     light.name = json.string("name", type);
-    light.position = json.vec3("position");
+    // The position is the placement's translation, so that a translation track replaces it; a
+    // rotation track turns the direction.
+    AnimatedTrs placement{.translation = json.vec3("position")};
     light.intensity = json.rgb("intensity", {});
     for (int c = 0; c < 3; ++c)
         if (light.intensity[c] < 0) json.fail("intensity", "must not be negative");
     if (json.has("animation")) {
         const JsonObject animation = json.object("animation");
+        parse_light_motion(animation, placement, true);
         if (animation.has("intensity"))
             light.intensity_track = parse_light_track(animation.object("intensity"), "intensity");
         animation.warn_unread();
     }
+    light.placement = {placement};
     json.warn_unread();
     return light;
 }
@@ -342,6 +360,17 @@ Rgb MaterialDesc::absorption() const {
     return {sigma(attenuation_color.r), sigma(attenuation_color.g), sigma(attenuation_color.b)};
 }
 
+PointLightPose PointLightDesc::pose_at(float time_s) const {
+    const Transform world_from_light = evaluate_chain(placement, time_s);
+    return {.position = world_from_light.point(position),
+            .direction = normalize(world_from_light.vector(direction)),
+            .intensity = intensity_at(time_s)};
+}
+
+Vec3 SunLightDesc::direction_at(float time_s) const {
+    return normalize(evaluate_chain(placement, time_s).vector(direction));
+}
+
 bool is_ever_lit(const Track<Rgb>& track) {
     return std::any_of(track.values.begin(), track.values.end(), [](Rgb value) { return !is_black(value); });
 }
@@ -413,12 +442,16 @@ void validate(const SceneDesc& desc) {
         const std::string where = file + ": light \"" + light.name + "\"";
         if (!is_finite(light.position) || !is_finite(light.intensity))
             throw InputError(where, "position or intensity is not finite");
+        if (!is_finite(light.direction) || !(length(light.direction) > 0))
+            throw InputError(where, "direction is not finite, or zero");
         validate_light_track(light.intensity_track, where + " intensity");
+        validate_placement(light.placement, desc, where);
     }
     for (const SunLightDesc& sun : desc.suns) {
         const std::string where = file + ": sun \"" + sun.name + "\"";
         if (!is_finite(sun.direction) || !(length(sun.direction) > 0) || !is_finite(sun.irradiance))
             throw InputError(where, "direction or irradiance is not finite, or the direction is zero");
+        validate_placement(sun.placement, desc, where);
     }
 }
 
@@ -452,6 +485,13 @@ SunLightDesc parse_sun_light(const JsonObject& json) {
     for (int c = 0; c < 3; ++c)
         if (sun.irradiance[c] < 0) json.fail("irradiance", "must not be negative");
     sun.angle_deg = json.number("angle_degrees", sun.angle_deg);
+    if (json.has("animation")) {
+        const JsonObject animation = json.object("animation");
+        AnimatedTrs placement;
+        parse_light_motion(animation, placement, false);
+        animation.warn_unread();
+        sun.placement = {placement};
+    }
     if (!(sun.angle_deg >= 0 && sun.angle_deg <= SunLightDesc::max_angle_deg))
         json.fail("angle_degrees", fmt::format("must lie in [0, {}]", SunLightDesc::max_angle_deg));
     json.warn_unread();

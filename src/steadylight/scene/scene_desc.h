@@ -101,8 +101,20 @@ struct ObjectDesc {
 
 enum class PointLightType { point, spot };
 
+/// A point or spot light as it is at one time: where it is, where it points, how bright.
+struct PointLightPose {
+    Vec3 position;
+    Vec3 direction;  // unit
+    Rgb intensity;
+
+    bool operator==(const PointLightPose&) const = default;
+};
+
 /// A light with no area: radiant intensity (W/sr per channel) from one point; a spot light
 /// restricts it to a cone, fading out between `falloff_start_deg` and `cone_angle_deg`.
+/// `position` and `direction` are in the light's own space, which `placement` puts in the world
+/// (a glTF node and its ancestors; a JSON light's translation and rotation tracks): a lamp that
+/// moves when the placement is animated.
 struct PointLightDesc {
     std::string name;
     PointLightType type = PointLightType::point;
@@ -112,20 +124,31 @@ struct PointLightDesc {
     std::optional<Track<Rgb>> intensity_track;  // when set, replaces `intensity`
     float cone_angle_deg = 30;
     float falloff_start_deg = 25;
+    std::vector<AnimatedTrs> placement;  // world_from_light, parent first; empty: the identity
 
     /// The radiant intensity at `time_s`.
     Rgb intensity_at(float time_s) const { return intensity_track ? intensity_track->evaluate(time_s) : intensity; }
     bool is_intensity_animated() const { return intensity_track && !intensity_track->is_constant(); }
+    bool is_moving() const { return is_chain_animated(placement); }
+    /// Where the light is, where it points and its intensity at `time_s`.
+    PointLightPose pose_at(float time_s) const;
 };
 
 /// The sun, or any light so far away that its rays arrive parallel: `irradiance` (W/m² per
 /// channel) on a surface facing it, arriving within a cone of angular diameter `angle_deg` about
 /// `direction`, the unit direction the light travels (0: a hard shadow's delta light).
+/// `direction` is in the sun's own space, which `placement` turns in the world (a glTF node and
+/// its ancestors; a JSON sun's rotation track): a sun that crosses the sky when it is animated.
 struct SunLightDesc {
     std::string name;
     Vec3 direction{0, -1, 0};
     Rgb irradiance;
     float angle_deg = default_sun_angle_deg;
+    std::vector<AnimatedTrs> placement;  // world_from_sun, parent first; empty: the identity
+
+    bool is_moving() const { return is_chain_animated(placement); }
+    /// The unit direction the light travels at `time_s`.
+    Vec3 direction_at(float time_s) const;
 
     static constexpr float default_sun_angle_deg = 0.53f;  // the real sun's
     static constexpr float max_angle_deg = 90;

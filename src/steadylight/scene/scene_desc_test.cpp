@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <fmt/format.h>
+
 #include "steadylight/base/error.h"
 #include "steadylight/scene/scene.h"
 #include "steadylight/scene/shapes.h"
@@ -121,8 +123,8 @@ TEST(SceneDesc, SwitchedLightsHaveTheFramesEmissionAndIntensity) {
     EXPECT_EQ(scene.evaluate(10).emission[1], (Rgb{17, 12, 4}));
     EXPECT_EQ(scene.evaluate(19).emission[1], (Rgb{17, 12, 4}));
     EXPECT_EQ(scene.evaluate(10).emission[0], Rgb{});  // the room is no light
-    EXPECT_EQ(scene.evaluate(9).point_light_intensity[0], (Rgb{3, 3, 3}));
-    EXPECT_EQ(scene.evaluate(10).point_light_intensity[0], (Rgb{6, 6, 6}));
+    EXPECT_EQ(scene.evaluate(9).point_lights[0].intensity, (Rgb{3, 3, 3}));
+    EXPECT_EQ(scene.evaluate(10).point_lights[0].intensity, (Rgb{6, 6, 6}));
 }
 
 TEST(SceneDesc, LightSwitchedOnStartsASegmentAndStaysStatic) {
@@ -146,6 +148,61 @@ TEST(SceneDesc, LightTrackBuiltInCodeIsValidatedToo) {
     desc = load_scene_desc(light_switch_scene);
     desc.point_lights[0].intensity_track->times = {1, 0};
     EXPECT_NE(testing::input_error_of([&] { const Scene scene(desc); }).find("increasing"), std::string::npos);
+}
+
+// A lamp's translation track replaces its position and its rotation track turns its direction;
+// a sun's rotation track turns its direction. Every frame a light moves starts a segment.
+TEST_F(SceneFiles, LightTracksMoveLampsAndTurnSuns) {
+    const float s = std::sin(pi / 4), c = std::cos(pi / 4);
+    const std::string lights = fmt::format(R"(, "frames": {{"count": 6, "fps": 2}},
+        "lights": [{{"type": "spot", "name": "torch", "position": [9, 9, 9], "direction": [0, -1, 0], "intensity": 1,
+                    "animation": {{"translation": {{"times": [0, 1], "values": [[0, 1, 0], [2, 1, 0]]}},
+                                  "rotation": {{"times": [0, 1], "values": [[0, 0, 0, 1], [0, 0, {}, {}]]}}}}}},
+                   {{"type": "point", "name": "bulb", "position": [0, 2, 0], "intensity": 1}},
+                   {{"type": "sun", "name": "noon", "direction": [0, -1, 0], "irradiance": 1,
+                    "animation": {{"rotation": {{"interpolation": "step", "times": [0, 2],
+                                                 "values": [[0, 0, 0, 1], [0, 0, {}, {}]]}}}}}}])",
+                                           s, c, s, c);
+    const Scene scene(load_scene_desc(write_scene(floor_quad, lights)));
+    const PointLightDesc& torch = scene.desc().point_lights[0];
+    EXPECT_TRUE(torch.is_moving());
+    EXPECT_FALSE(scene.desc().point_lights[1].is_moving());
+    EXPECT_TRUE(scene.desc().suns[0].is_moving());
+    EXPECT_EQ(scene.evaluate(0).point_lights[0].position, (Vec3{0, 1, 0}));  // the track, not "position"
+    const PointLightPose at_end = scene.evaluate(2).point_lights[0];
+    EXPECT_NEAR(at_end.position.x, 2, 1e-6f);
+    EXPECT_NEAR(at_end.direction.x, 1, 1e-6f);  // (0, -1, 0) turned a quarter about z
+    EXPECT_NEAR(at_end.direction.y, 0, 1e-6f);
+    EXPECT_EQ(scene.evaluate(5).point_lights[1].position, (Vec3{0, 2, 0}));
+    EXPECT_NEAR(scene.evaluate(3).sun_directions[0].y, -1, 1e-6f);
+    EXPECT_NEAR(scene.evaluate(4).sun_directions[0].x, 1, 1e-6f);  // the step key at 2 s: frame 4
+    // The torch moves until frame 2 and the sun turns at frame 4: segments 0, 1, 2-3 and 4-5.
+    ASSERT_EQ(scene.segments().size(), 4u);
+    EXPECT_EQ(scene.segments()[1].first, 1);
+    EXPECT_EQ(scene.segments()[1].last, 1);
+    EXPECT_EQ(scene.segments()[2].first, 2);
+    EXPECT_EQ(scene.segments()[2].last, 3);
+    EXPECT_EQ(scene.segments()[3].first, 4);
+}
+
+TEST_F(SceneFiles, BadLightTracksNameTheFileAndThePointer) {
+    const auto lamp = [&](const std::string& animation) {
+        return write_scene(floor_quad, R"(, "lights": [{"type": "point", "position": [0, 1, 0], "intensity": 1,
+                                                        "animation": )" +
+                                           animation + "}]");
+    };
+    expect_error(lamp(R"({"rotation": {"times": [0, 1], "values": [[0, 0, 0, 1], [0, 0, 0, 0]]}})"),
+                 {"scene.json:/lights/0/animation/rotation/values/1", "quaternion must not be zero"});
+    expect_error(lamp(R"({"translation": {"times": [1, 0], "values": [[0, 1, 0], [1, 1, 0]]}})"),
+                 {"scene.json:/lights/0/animation/translation/times", "strictly increasing"});
+    expect_error(lamp(R"({"translation": {"times": [0, 1], "values": [[0, 1, 0], [3.5e38, 1, 0]]}})"),
+                 {"scene.json:/lights/0/animation/translation/values", "not finite"});
+    expect_error(lamp(R"({"translation": {"times": [0, 1], "values": [[0, 1, 0], [NaN, 1, 0]]}})"), {"scene.json"});
+    expect_error(lamp(R"({"scale": {"times": [0], "values": [[2, 2, 2]]}})"),
+                 {"scene.json:/lights/0/animation/scale", "no size"});
+    expect_error(write_scene(floor_quad, R"(, "lights": [{"type": "sun", "direction": [0, -1, 0],
+                     "animation": {"translation": {"times": [0], "values": [[0, 1, 0]]}}}])"),
+                 {"scene.json:/lights/0/animation/translation", "a sun has no position"});
 }
 
 TEST(SceneDesc, BoxNormalsPointOutward) {
@@ -400,9 +457,9 @@ TEST_F(SceneFiles, LampIntensityTrackStepsAndSplitsBesideTheExplicitSegments) {
                    {"type": "point", "position": [0, 1, 0], "intensity": 1,
                     "animation": {"intensity": {"interpolation": "step", "times": [0, 0.7], "values": [1, 0]}}}])";
     const Scene scene(load_scene_desc(write_scene(floor_quad, lamp)));
-    EXPECT_EQ(scene.evaluate(0).point_light_intensity[0], (Rgb{1, 2, 3}));  // held before the first key
-    EXPECT_EQ(scene.evaluate(6).point_light_intensity[1], (Rgb{1, 1, 1}));
-    EXPECT_EQ(scene.evaluate(7).point_light_intensity[1], Rgb{});  // switched off
+    EXPECT_EQ(scene.evaluate(0).point_lights[0].intensity, (Rgb{1, 2, 3}));  // held before the first key
+    EXPECT_EQ(scene.evaluate(6).point_lights[1].intensity, (Rgb{1, 1, 1}));
+    EXPECT_EQ(scene.evaluate(7).point_lights[1].intensity, Rgb{});  // switched off
     ASSERT_EQ(scene.segments().size(), 3u);
     EXPECT_EQ(scene.segments()[1].first, 3);
     EXPECT_EQ(scene.segments()[1].last, 6);

@@ -157,9 +157,9 @@ Vec3 origin_outside(const BoundingSphere& scene, Vec3 p, Vec3 d) {
 
 class SunLight final : public Light {
 public:
-    SunLight(const SunLightDesc& desc, const BoundingSphere& scene, const std::vector<PortalDesc>& portals,
-             const DistantPhotonTargets* targets)
-        : m_to_sun(-normalize(desc.direction)),
+    SunLight(const SunLightDesc& desc, Vec3 direction, const BoundingSphere& scene,
+             const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets)
+        : m_to_sun(-normalize(direction)),
           m_irradiance(desc.irradiance),
           m_cos_max(std::cos(desc.angle_deg * pi / 360)),
           m_delta(desc.angle_deg <= 0 || m_cos_max >= 1),
@@ -381,9 +381,9 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene,
+std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, Vec3 direction, const BoundingSphere& scene,
                                       const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets) {
-    return std::make_unique<SunLight>(desc, scene, portals, targets);
+    return std::make_unique<SunLight>(desc, direction, scene, portals, targets);
 }
 
 std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene,

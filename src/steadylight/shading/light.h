@@ -80,12 +80,12 @@ public:
 /// Area light over the world-space surface of emissive object `object` at this frame, with the
 /// frame's emission.
 std::unique_ptr<Light> make_area_light(const Scene& scene, const FrameState& frame, int object);
-/// A point or spot light with radiant intensity `intensity` (the lamp's at the frame).
-std::unique_ptr<Light> make_point_light(const PointLightDesc& desc, Rgb intensity);
-/// A sun, and the world, whose photons cover `scene` (Scene::bounds()), or enter through
-/// `portals` when there are any.
+/// A point or spot light where, and as bright as, `pose` (the lamp's at the frame) says.
+std::unique_ptr<Light> make_point_light(const PointLightDesc& desc, const PointLightPose& pose);
+/// A sun whose light travels `direction` (the sun's at the frame), and the world, whose photons
+/// cover `scene` (Scene::bounds()), or enter through `portals` when there are any.
 /// Without portals, `targets` (when not null) aims them (scene/distant_photon_targets.h).
-std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, const BoundingSphere& scene,
+std::unique_ptr<Light> make_sun_light(const SunLightDesc& desc, Vec3 direction, const BoundingSphere& scene,
                                       const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets);
 std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSphere& scene,
                                         const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets);

@@ -39,13 +39,13 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_obj
         m_lights.push_back(make_area_light(scene, frame, object));
     }
     for (size_t i = 0; i < scene.desc().point_lights.size(); ++i)
-        if (!is_black(frame.point_light_intensity[i]))
-            m_lights.push_back(make_point_light(scene.desc().point_lights[i], frame.point_light_intensity[i]));
+        if (!is_black(frame.point_lights[i].intensity))
+            m_lights.push_back(make_point_light(scene.desc().point_lights[i], frame.point_lights[i]));
     m_first_distant = m_lights.size();
-    for (const SunLightDesc& sun : scene.desc().suns)
-        if (!is_black(sun.irradiance))
-            m_lights.push_back(
-                make_sun_light(sun, scene.bounds(), scene.desc().portals, scene.distant_photon_targets()));
+    for (size_t i = 0; i < scene.desc().suns.size(); ++i)
+        if (!is_black(scene.desc().suns[i].irradiance))
+            m_lights.push_back(make_sun_light(scene.desc().suns[i], frame.sun_directions[i], scene.bounds(),
+                                              scene.desc().portals, scene.distant_photon_targets()));
     if (scene.desc().world && !scene.desc().world->radiance->is_black())
         m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds(), scene.desc().portals,
                                             scene.distant_photon_targets()));
