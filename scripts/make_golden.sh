@@ -11,7 +11,7 @@ out=tests/scenes/golden
 # SCENE or SCENE:FRAME (a frame in a later segment).
 entries=("$@")
 [ ${#entries[@]} -gt 0 ] || entries=(cornell ball table corridor mirror_room flythrough glass_move switch_room:15 blender_room
-  blender_textured blender_glass daylit_room daylit_sun outdoor_hdri)
+  blender_textured blender_glass daylit_room daylit_sun outdoor_hdri torch_corridor:15 daylit_sweep:15)
 for entry in "${entries[@]}"; do
   scene=${entry%%:*} frame=0
   [[ $entry == *:* ]] && frame=${entry#*:}

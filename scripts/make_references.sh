@@ -17,7 +17,7 @@ still_only=0
 if [ "${1:-}" = --still-only ]; then still_only=1; shift; fi
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(table corridor mirror_room glass_move flythrough switch_room ball cornell blender_room blender_textured blender_glass
-  daylit_room daylit_sun outdoor_hdri)
+  daylit_room daylit_sun outdoor_hdri torch_corridor daylit_sweep)
 out=tests/references
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the scenes: scenes/ball.json, table.json and cornell.json, and the truth suite's
 corridor.json, mirror_room.json, flythrough.json, glass_move.json, switch_room.json,
-daylit_room.json, daylit_sun.json and outdoor_hdri.json (docs/truth-suite.md), and
+daylit_room.json, daylit_sun.json, outdoor_hdri.json, and the moving lights' torch_corridor.json
+and daylit_sweep.json (docs/truth-suite.md), and
 daylit_glazed.json, the daylit room behind a pane of glass, which the suite measures apart.
 
 BALL and TABLE follow docs/test-scenes.md exactly; their keyframes (one per
@@ -163,6 +164,19 @@ def corridor_scene():
             "materials": materials, "objects": objects, "lights": lights}
 
 
+def torch_corridor_scene():
+    """The corridor with its ceiling panels and lamps standing still, and a torch (a spot lamp)
+    carried by the figure as it walks towards the camera, shining ahead of it onto the floor:
+    one light that moves among several that do not, every frame its own segment."""
+    scene = corridor_scene()
+    scene["name"] = "torch_corridor"
+    ts = suite_times()
+    scene["lights"].append({"type": "spot", "name": "torch", "position": [1.15, 1.3, 6.8], "direction": [0, -0.6, -1],
+                            "intensity": [5, 4.6, 3.8], "cone_degrees": 28,
+                            "animation": {"translation": keyframes([[1.15, 1.3, 6.8 - 5.5 * t] for t in ts])}})
+    return scene
+
+
 def mirror_room_scene():
     """BALL's room with a mirror on the left wall and a glossy floor, both seeing a ball that
     rolls across: specular paths that meet a moving object."""
@@ -279,6 +293,18 @@ def daylit_scene(name, world, glazed=False):
     return scene
 
 
+def daylit_sweep_scene():
+    """`daylit_sun` with the sun turning 25 degrees about the vertical over the animation, as
+    in a time-lapse: its beam sweeps across the floor and the far wall while the ball bounces
+    through it. The sun moves every frame: every frame its own segment."""
+    scene = daylit_scene("daylit_sweep", None)
+    sun = dict(DAYLIT_SUN)
+    sun["animation"] = {"rotation": {"interpolation": "linear", "times": [0, round((SUITE_FRAMES - 1) / FPS, 6)],
+                                     "values": [[0, 0, 0, 1], [round(c, 6) for c in y_rotation(-25)]]}}
+    scene["lights"] = [sun]
+    return scene
+
+
 def outdoor_hdri_scene():
     """Outdoors under Blender's courtyard world (scenes/worlds/courtyard.exr, CC0): a ground of
     20 m x 20 m, a white block and an ochre column, and a ball rolling across in front of them.
@@ -311,6 +337,8 @@ def main():
               ("switch_room", switch_room_scene()),
               ("daylit_room", daylit_scene("daylit_room", {"color": [0.25, 0.35, 0.55], "strength": 1})),
               ("daylit_sun", daylit_scene("daylit_sun", None)),
+              ("torch_corridor", torch_corridor_scene()),
+              ("daylit_sweep", daylit_sweep_scene()),
               ("daylit_glazed", daylit_scene("daylit_glazed", {"color": [0.25, 0.35, 0.55], "strength": 1},
                                              glazed=True)),
               ("outdoor_hdri", outdoor_hdri_scene())]

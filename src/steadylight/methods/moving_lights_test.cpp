@@ -41,9 +41,9 @@ std::string write_lights_still_at_the_end(const fs::path& dir, const std::string
 class MovingLights : public ::testing::Test {
 protected:
     void SetUp() override {
-        m_dir = fs::temp_directory_path() /
-                fmt::format("steadylight_{}_{}", ::testing::UnitTest::GetInstance()->current_test_info()->name(),
-                            getpid());
+        m_dir =
+            fs::temp_directory_path() /
+            fmt::format("steadylight_{}_{}", ::testing::UnitTest::GetInstance()->current_test_info()->name(), getpid());
         fs::remove_all(m_dir);
         fs::create_directories(m_dir);
     }
@@ -54,9 +54,8 @@ protected:
     std::vector<Image> render(const std::string& scene_file, Method method, const std::string& frames) const {
         RenderSettings settings;
         settings.scene_file = scene_file;
-        settings.out_dir = (m_dir / fmt::format("{}_{}", fs::path(scene_file).stem().string(),
-                                                method_info(method).name))
-                               .string();
+        settings.out_dir =
+            (m_dir / fmt::format("{}_{}", fs::path(scene_file).stem().string(), method_info(method).name)).string();
         settings.method = method;
         settings.frames = parse_frame_selection(frames);
         settings.show_progress = false;
