@@ -15,7 +15,7 @@ import os
 import shutil
 
 import bpy
-from mathutils import Vector
+from mathutils import Matrix, Quaternion, Vector
 
 # Cycles gives an area lamp of power P watts and area A the radiance P / (4 A) (measured: a 1 m
 # square of 10 W seen head-on reads 2.5; its light on a white floor agrees), not P / (pi A).
@@ -35,6 +35,10 @@ MATERIAL_NODES = {
 
 def to_steadylight(v):
     return [v[0], v[2], -v[1]]
+
+
+# The same turn as a rotation (-90 degrees about x), which placements are composed with.
+TO_STEADYLIGHT = Quaternion((1, 0, 0), -math.pi / 2)
 
 
 def rounded(values, digits=6):
@@ -149,9 +153,9 @@ def sky_spec(world, sky, strength, export):
             "strength": strength}
 
 
-def lamp_frame(obj):
-    """An area lamp's centre and its local x and y edges as long as the lamp, in Blender's axes."""
-    matrix = obj.matrix_world
+def lamp_frame(obj, matrix):
+    """An area lamp's centre and its local x and y edges as long as the lamp, placed by `matrix`
+    (the world's: in Blender's axes; the identity: in the lamp's own)."""
     lamp = obj.data
     size_x = lamp.size
     size_y = lamp.size_y if lamp.shape in ("RECTANGLE", "ELLIPSE") else lamp.size
@@ -162,16 +166,48 @@ def lamp_frame(obj):
 
 def portal_spec(obj):
     """A Cycles portal (an area lamp marked Portal; it faces down its -z, into the room)."""
-    centre, x, y = lamp_frame(obj)
+    centre, x, y = lamp_frame(obj, obj.matrix_world)
     # edge_u x edge_v must face into the room: y x x is the lamp's -z.
     return {"corner": rounded(to_steadylight(centre - (x + y) / 2)),
             "edge_u": rounded(to_steadylight(y)), "edge_v": rounded(to_steadylight(x))}
 
 
-def area_lamp_object(obj, export):
-    """An area lamp as an emitting quad or polygon mesh of the lamp's radiance, emitting down its -z."""
+def world_matrices(scene, objects):
+    """Each object's world matrix at every frame of the scene (frame_start to frame_end)."""
+    current = scene.frame_current
+    matrices = {obj.name: [] for obj in objects}
+    for frame in range(scene.frame_start, scene.frame_end + 1):
+        scene.frame_set(frame)
+        for obj in objects:
+            matrices[obj.name].append(obj.matrix_world.copy())
+    scene.frame_set(current)
+    return matrices
+
+
+def motion_tracks(scene, matrices, obj, export):
+    """An object's placement at every frame as steadylight's translation, rotation and scale tracks
+    (one key per frame, at frame / fps as the glTF exporter writes them), its shape in its own axes."""
+    times = [round(f / scene.render.fps, 6) for f in range(scene.frame_start, scene.frame_end + 1)]
+    translations, rotations, scales = [], [], []
+    for matrix in matrices:
+        translation, rotation, scale = matrix.decompose()
+        turned = TO_STEADYLIGHT @ rotation
+        translations.append(rounded(to_steadylight(translation)))
+        rotations.append(rounded([turned.x, turned.y, turned.z, turned.w]))
+        scales.append(rounded(scale))
+    if any(s != scales[0] for s in scales):
+        export.warn(f"area lamp {obj.name}: its size changes, and its radiance stays the first frame's (its power "
+                    "changes with its size)")
+    return {"translation": {"times": times, "values": translations},
+            "rotation": {"times": times, "values": rotations},
+            "scale": {"times": times, "values": scales}}
+
+
+def area_lamp_object(obj, export, motion=None):
+    """An area lamp as an emitting quad or polygon mesh of the lamp's radiance, emitting down its -z;
+    with `motion` (its tracks), in the lamp's own axes, moved by them."""
     lamp = obj.data
-    centre, x, y = lamp_frame(obj)
+    _, x, y = lamp_frame(obj, obj.matrix_world)
     area = x.length * y.length * (math.pi / 4 if lamp.shape in ("DISK", "ELLIPSE") else 1)
     if area <= 0 or lamp.energy <= 0 or max(lamp.color) <= 0:
         return None  # no light, and Blender's lamps are not seen nor cast shadows
@@ -184,9 +220,12 @@ def area_lamp_object(obj, export):
         export.warn(f"area lamp {obj.name}: its Spread ({math.degrees(lamp.spread):.0f} degrees) is not "
                     "carried: it emits into the whole half-space")
     radiance = [c * lamp.energy * AREA_LAMP_RADIANCE_PER_WATT_AREA / area for c in lamp.color]
+    # A moving lamp's shape is in its own axes, which its tracks place; a still one's in the world.
+    centre, x, y = lamp_frame(obj, Matrix.Identity(4) if motion else obj.matrix_world)
+    axes = (lambda v: list(v)) if motion else to_steadylight
     if lamp.shape in ("SQUARE", "RECTANGLE"):
-        shape = {"type": "quad", "corner": rounded(to_steadylight(centre - (x + y) / 2)),
-                 "edge_u": rounded(to_steadylight(y)), "edge_v": rounded(to_steadylight(x))}
+        shape = {"type": "quad", "corner": rounded(axes(centre - (x + y) / 2)),
+                 "edge_u": rounded(axes(y)), "edge_v": rounded(axes(x))}
     else:
         # A fan of triangles, wound clockwise seen from +z so that its front is the lamp's -z; its
         # radiance raised by the area the polygon misses, so that it keeps the lamp's power.
@@ -195,29 +234,40 @@ def area_lamp_object(obj, export):
         polygon_area = DISC_SEGMENTS / 2 * math.sin(2 * math.pi / DISC_SEGMENTS) * x.length * y.length / 4
         radiance = [r * area / polygon_area for r in radiance]
         file_name = f"{export.name}_lamp{sum(name.endswith('.obj') for name in export.files)}.obj"
-        lines = [f"v {' '.join(f'{c:.6f}' for c in to_steadylight(p))}" for p in [centre] + points]
+        lines = [f"v {' '.join(f'{c:.6f}' for c in axes(p))}" for p in [centre] + points]
         lines += [f"f 1 {i + 2} {(i + 1) % DISC_SEGMENTS + 2}" for i in range(DISC_SEGMENTS)]
         export.files[file_name] = ("\n".join(lines) + "\n").encode()
         shape = {"type": "mesh", "file": file_name}
-    return {"name": obj.name, "shape": shape, "emission": rounded(radiance)}
+    spec = {"name": obj.name, "shape": shape, "emission": rounded(radiance)}
+    if motion:
+        spec["animation"] = motion
+    return spec
 
 
 def lamp_specs(scene, export):
-    """Suns' angles by node name, area lamps as emitters, portals; warnings for what is not carried."""
+    """Suns' angles by node name, area lamps as emitters, portals; warnings for what is not carried.
+    Point, spot and sun lamps that move are moved by the .glb's animation of their nodes; area
+    lamps that move (by their own keys, a parent's or a constraint) get tracks of their own."""
     sun_angles, emitters, portals = {}, [], []
-    for obj in scene.objects:
-        if obj.type != "LIGHT" or obj.hide_render:
-            continue
+    lamps = [obj for obj in scene.objects if obj.type == "LIGHT" and not obj.hide_render]
+    area_lamps = [obj for obj in lamps if obj.data.type == "AREA"]
+    matrices = world_matrices(scene, area_lamps) if area_lamps else {}
+    for obj in lamps:
         lamp = obj.data
-        if any(data.animation_data is not None and data.animation_data.action is not None for data in (obj, lamp)):
-            export.warn(f"lamp {obj.name}: animated lamps stay where they are at the first frame")
+        if lamp.animation_data is not None and lamp.animation_data.action is not None:
+            export.warn(f"lamp {obj.name}: its animated power, colour or size are not carried: they stay the "
+                        "first frame's (its movement is carried)")
+        moving = lamp.type == "AREA" and any(m != matrices[obj.name][0] for m in matrices[obj.name])
         if lamp.type == "SUN":
             sun_angles[obj.name] = round(math.degrees(lamp.angle), 6)
         elif lamp.type == "AREA":
             if lamp.cycles.is_portal:
+                if moving:
+                    export.warn(f"portal {obj.name}: a portal that moves stays where it is at the current frame")
                 portals.append(portal_spec(obj))
             else:
-                emitter = area_lamp_object(obj, export)
+                motion = motion_tracks(scene, matrices[obj.name], obj, export) if moving else None
+                emitter = area_lamp_object(obj, export, motion)
                 if emitter is not None:
                     emitters.append(emitter)
         elif lamp.type in ("POINT", "SPOT") and lamp.shadow_soft_size > 0:

@@ -3,7 +3,10 @@ a window in its +x wall (marked by a Cycles portal), a light blue world colour a
 lamp under the ceiling, with a red cube that moves across the floor over frames 1-3, 64 x 48
 pixels. Runs inside Blender:
 
-    blender -b --factory-startup --python tests/blender/make_test_room.py -- OUT.blend
+    blender -b --factory-startup --python tests/blender/make_test_room.py -- OUT.blend [--moving-lamps WxH]
+
+`--moving-lamps` adds lamps that move (animate_lamps) and renders at W x H: the room of the
+Cycles cross-check of moving lamps (docs/truth-suite.md).
 """
 import math
 import os
@@ -91,4 +94,25 @@ def build(path):
     bpy.ops.wm.save_as_mainfile(filepath=path)
 
 
-build(sys.argv[sys.argv.index("--") + 1])
+def animate_lamps(scene):
+    """The area lamp slides 2 m and turns by 23 degrees, and a 30 W point lamp rises by 1 m, over
+    frames 1-3 (Blender's Bezier keys)."""
+    panel = scene.objects["Panel"]
+    bulb = bpy.data.objects.new("Bulb", bpy.data.lights.new("Bulb", "POINT"))
+    bulb.data.energy, bulb.data.shadow_soft_size = 30, 0
+    scene.collection.objects.link(bulb)
+    for frame, y, turn, z in ((1, -1.0, 0.0, 1.0), (3, 1.0, 0.4, 2.0)):
+        panel.location.y, panel.rotation_euler.x, bulb.location = y, turn, (1, 0, z)
+        panel.keyframe_insert("location", frame=frame)
+        panel.keyframe_insert("rotation_euler", frame=frame)
+        bulb.keyframe_insert("location", frame=frame)
+
+
+if __name__ == "__main__":
+    args = sys.argv[sys.argv.index("--") + 1:]
+    build(args[0])
+    if "--moving-lamps" in args:
+        animate_lamps(bpy.context.scene)
+        width, height = args[args.index("--moving-lamps") + 1].split("x")
+        bpy.context.scene.render.resolution_x, bpy.context.scene.render.resolution_y = int(width), int(height)
+        bpy.ops.wm.save_as_mainfile(filepath=args[0])
