@@ -593,6 +593,20 @@ TEST_F(GltfLoader, AnimatedLightsMoveWithTheirNodesAndParents) {
     }
 }
 
+// A light carried by a node whose track holds a NaN is refused, naming the file and the light.
+TEST_F(GltfLoader, LightMovedByANonFiniteTrackIsAnInputError) {
+    tinygltf::Model model = camera_model();
+    tinygltf::Light lamp;
+    lamp.type = "point";
+    lamp.intensity = 683;
+    add_light_shining_down(model, lamp, "Lamp", {0, 3, 0});
+    add_animation(model, int(model.nodes.size()) - 1, "translation", "LINEAR", {0, 1}, {0, 3, 0, std::nanf(""), 3, 0});
+    const std::string path = write(model, "lamp.glb");
+    const std::string message = testing::input_error_of([&] { load_scene_desc(path); });
+    EXPECT_NE(message.find("lamp.glb: light \"light 0\": transform is not finite at frame"), std::string::npos)
+        << message;
+}
+
 TEST_F(GltfLoader, CubicSplineTranslationFollowsTheGltfHermiteSpline) {
     tinygltf::Model model;
     const int node = add_node(model, make_node("Spline", add_triangle_mesh(model)));
