@@ -44,6 +44,15 @@ bool has_light(const SceneDesc& desc) {
            has_distant_light(desc);
 }
 
+/// True when a lamp or a sun moves, or an emitting object does.
+bool moves_a_light(const SceneDesc& desc) {
+    return std::any_of(desc.point_lights.begin(), desc.point_lights.end(),
+                       [](const PointLightDesc& light) { return light.is_moving(); }) ||
+           std::any_of(desc.suns.begin(), desc.suns.end(), [](const SunLightDesc& sun) { return sun.is_moving(); }) ||
+           std::any_of(desc.objects.begin(), desc.objects.end(),
+                       [](const ObjectDesc& o) { return o.is_emitter() && o.is_dynamic(); });
+}
+
 Scene load_scene(const RenderSettings& settings) {
     Scene scene(load_scene_desc(settings.scene_file, settings.confine_inputs));
     const SceneDesc& desc = scene.desc();
@@ -52,6 +61,12 @@ Scene load_scene(const RenderSettings& settings) {
             "{}: the scene has no light (no object with an emission, no point or spot light with an "
             "intensity, no sun, no world): every frame renders black",
             settings.scene_file);
+    if (method_info(settings.method).has_static_pass && moves_a_light(desc))
+        spdlog::info(
+            "{}: lights move, and each frame where they moved is a segment of its own with its own static pass "
+            "({} segment(s) in all): the photon method (--method photon) renders such frames faster "
+            "(docs/localized.md, \"Lights that move\")",
+            settings.scene_file, scene.segments().size());
     scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
     scene.set_transparent_background(settings.output.transparent_background);
     // Photons of light from far away aimed where the camera's view shows it comes in, unless
