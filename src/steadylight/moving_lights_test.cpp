@@ -1,7 +1,7 @@
-// Lamps and suns that move (tests/scenes/moving_lamps.json: a torch carried across a room and a
-// sun turning, lighting it through a window, a ball rolling): every frame where a light has moved
-// is its own segment, so each method renders it as the still scene with the lights where they
-// are at that frame.
+// Lights that move (tests/scenes/moving_lamps.json: a torch carried across a room, a sun turning,
+// lighting it through a window, a glowing lantern floating across, a ball rolling): every frame
+// where a light has moved is its own segment, so each method renders it as the still scene with
+// the lights where they are at that frame.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -23,15 +23,25 @@ namespace fs = std::filesystem;
 
 const std::string moving_lamps = std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/scenes/moving_lamps.json";
 
+/// `animation`'s tracks cut to their last key: what they hold from then on.
+void hold_last_keys(nlohmann::json& animation) {
+    for (auto& [path, track] : animation.items()) {
+        track["times"] = {0};
+        track["values"] = {track["values"].back()};
+    }
+}
+
 /// The scene file with every light's tracks cut to their last key: the lights stand still where
-/// the animation leaves them (frame 2), written as `name`.json into `dir`.
+/// the animation leaves them (frame 2), written as `name`.json into `dir`. The lantern, an
+/// emitting object, stays marked dynamic, as its moving self is.
 std::string write_lights_still_at_the_end(const fs::path& dir, const std::string& name) {
     nlohmann::json scene = nlohmann::json::parse(std::ifstream(moving_lamps));
     scene["name"] = name;
-    for (nlohmann::json& light : scene["lights"])
-        for (auto& [path, track] : light["animation"].items()) {
-            track["times"] = {0};
-            track["values"] = {track["values"].back()};
+    for (nlohmann::json& light : scene["lights"]) hold_last_keys(light["animation"]);
+    for (nlohmann::json& object : scene["objects"])
+        if (object.contains("emission")) {
+            hold_last_keys(object["animation"]);
+            object["dynamic"] = true;
         }
     const fs::path file = dir / (name + ".json");
     std::ofstream(file) << scene.dump(1);
@@ -82,9 +92,15 @@ TEST_F(MovingLights, EveryFrameWhereALightMovedIsItsOwnSegment) {
     const Scene still(load_scene_desc(write_lights_still_at_the_end(m_dir, "still")));
     EXPECT_FALSE(still.desc().point_lights.at(0).is_moving());
     EXPECT_FALSE(still.desc().suns.at(0).is_moving());
-    EXPECT_EQ(still.segments().size(), 1u);
+    EXPECT_EQ(still.segments().size(), 3u);  // an emitting dynamic object: every frame its own
     EXPECT_EQ(still.evaluate(0).point_lights, scene.evaluate(2).point_lights);
     EXPECT_EQ(still.evaluate(0).sun_directions, scene.evaluate(2).sun_directions);
+    // The lantern, an emitting object that moves, is a light that moves too.
+    const int lantern = int(scene.objects().size()) - 1;
+    EXPECT_TRUE(scene.object(lantern).is_emitter());
+    EXPECT_TRUE(scene.object(lantern).is_dynamic());
+    EXPECT_EQ(still.evaluate(0).world_from_object[size_t(lantern)],
+              scene.evaluate(2).world_from_object[size_t(lantern)]);
 }
 
 // Right first: a frame rendered as part of the moving animation is the frame of the still scene
