@@ -44,13 +44,20 @@ bool has_light(const SceneDesc& desc) {
            has_distant_light(desc);
 }
 
-/// True when a lamp or a sun moves, or an emitting object does.
-bool moves_a_light(const SceneDesc& desc) {
+/// True when a lamp or a sun moves (PhotonGroup::moving).
+bool moves_a_lamp_or_sun(const SceneDesc& desc) {
     return std::any_of(desc.point_lights.begin(), desc.point_lights.end(),
                        [](const PointLightDesc& light) { return light.is_moving(); }) ||
-           std::any_of(desc.suns.begin(), desc.suns.end(), [](const SunLightDesc& sun) { return sun.is_moving(); }) ||
-           std::any_of(desc.objects.begin(), desc.objects.end(),
-                       [](const ObjectDesc& o) { return o.is_emitter() && o.is_dynamic(); });
+           std::any_of(desc.suns.begin(), desc.suns.end(), [](const SunLightDesc& sun) { return sun.is_moving(); });
+}
+
+/// True when some light stands still: an emitting object, a lamp or sun that does not move, the world.
+bool has_still_light(const SceneDesc& desc) {
+    return std::any_of(desc.objects.begin(), desc.objects.end(), [](const ObjectDesc& o) { return o.is_emitter(); }) ||
+           std::any_of(desc.point_lights.begin(), desc.point_lights.end(),
+                       [](const PointLightDesc& light) { return !light.is_moving(); }) ||
+           std::any_of(desc.suns.begin(), desc.suns.end(), [](const SunLightDesc& sun) { return !sun.is_moving(); }) ||
+           desc.world.has_value();
 }
 
 Scene load_scene(const RenderSettings& settings) {
@@ -61,12 +68,15 @@ Scene load_scene(const RenderSettings& settings) {
             "{}: the scene has no light (no object with an emission, no point or spot light with an "
             "intensity, no sun, no world): every frame renders black",
             settings.scene_file);
-    if (method_info(settings.method).has_static_pass && moves_a_light(desc))
+    // Lights that move are lit apart from the static pass (docs/localized.md, "Lights that move").
+    if (settings.method == Method::frozen && moves_a_lamp_or_sun(desc))
+        spdlog::warn("{}: lamps or suns move: the frozen baseline leaves out their indirect light",
+                     settings.scene_file);
+    if (settings.method == Method::localized && moves_a_lamp_or_sun(desc) && !has_still_light(desc))
         spdlog::info(
-            "{}: lights move, and each frame where they moved is a segment of its own with its own static pass "
-            "({} segment(s) in all): the photon method (--method photon) renders such frames faster "
-            "(docs/localized.md, \"Lights that move\")",
-            settings.scene_file, scene.segments().size());
+            "{}: every light moves, so the static pass holds no light and every frame gathers anew: the photon method "
+            "(--method photon) renders this faster",
+            settings.scene_file);
     scene.set_resolution(settings.width.value_or(desc.camera.width), settings.height.value_or(desc.camera.height));
     scene.set_transparent_background(settings.output.transparent_background);
     // Photons of light from far away aimed where the camera's view shows it comes in, unless
@@ -459,10 +469,11 @@ std::string describe_scene(const std::string& scene_file, bool confine_inputs) {
     text += objects;
     text +=
         fmt::format("lights: {} area, {} point/spot, {} sun", area_lights, desc.point_lights.size(), desc.suns.size());
-    text += animated_lights
-                ? fmt::format(", {} animated (switched, dimmed or moved; a new segment where they change)\n",
-                              animated_lights)
-                : std::string("\n");
+    text +=
+        animated_lights
+            ? fmt::format(", {} animated (switched, dimmed or moved; a new segment where one is switched or dimmed)\n",
+                          animated_lights)
+            : std::string("\n");
     const FrameState first = scene.evaluate(0);
     for (size_t i = 0; i < desc.point_lights.size(); ++i) {
         const PointLightDesc& light = desc.point_lights[i];

@@ -67,15 +67,18 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
             h.add(state.world_from_object[size_t(i)]), h.add(state.emission[size_t(i)]);
             add_geometry(h, scene.object(i).geometry);
         }
+    // A lamp or sun that moves lights no static record, but its power shares out the photons.
     for (size_t i = 0; i < scene.desc().point_lights.size(); ++i) {
         const PointLightDesc& light = scene.desc().point_lights[i];
         const PointLightPose& pose = state.point_lights[i];
-        h.add(int(light.type)), h.add(pose.position), h.add(pose.direction), h.add(pose.intensity);
+        h.add(int(light.type)), h.add(light.is_moving()), h.add(pose.intensity);
+        if (!light.is_moving()) h.add(pose.position), h.add(pose.direction);
         h.add(light.cone_angle_deg), h.add(light.falloff_start_deg);
     }
     for (size_t i = 0; i < scene.desc().suns.size(); ++i) {
         const SunLightDesc& sun = scene.desc().suns[i];
-        h.add(state.sun_directions[i]), h.add(sun.irradiance), h.add(sun.angle_deg);
+        h.add(sun.is_moving()), h.add(sun.irradiance), h.add(sun.angle_deg);
+        if (!sun.is_moving()) h.add(state.sun_directions[i]);
     }
     if (const std::optional<WorldDesc>& world = scene.desc().world) h.add(world->radiance->hash());
     for (const PortalDesc& portal : scene.desc().portals)

@@ -29,7 +29,9 @@ std::vector<uint32_t> offsets_of(const std::vector<uint32_t>& counts) {
 
 StoredPaths trace_stored(const FrameContext& context, const PhotonSettings& settings, MapKind kind) {
     StoredPaths paths;
-    paths.count = path_count(context, settings, kind);
+    // The static scene holds the still lights' paths; a moving light's are traced every frame.
+    const PhotonSplit split = context.lights.split(path_count(context, settings, kind));
+    paths.count = split.still;
     if (kind == MapKind::caustic) paths.targets.emplace(context, Visibility::static_only);
     if (paths.count <= 0) {
         paths.first_segment = paths.first_photon = {0};
@@ -47,7 +49,7 @@ StoredPaths trace_stored(const FrameContext& context, const PhotonSettings& sett
         const PhotonOutput out{photons[c], nullptr, true, &segments[c]};
         for (long i = begin; i < end; ++i) {
             const size_t photons_before = photons[c].size(), segments_before = segments[c].size();
-            tracer.trace(first_photon_index(kind) + uint64_t(i), scale, out);
+            tracer.trace(first_photon_index(kind) + uint64_t(i), PhotonGroup::still, scale, out);
             photon_counts[size_t(i)] = uint32_t(photons[c].size() - photons_before);
             segment_counts[size_t(i)] = uint32_t(segments[c].size() - segments_before);
         }
@@ -178,6 +180,24 @@ std::vector<Vec3> changed_points(const PhotonMap& base, const Composition& c) {
     return points;
 }
 
+/// Adds the moving lights' paths [split.still, split.total), traced in the frame, after the
+/// still ones, as full tracing orders them: their photons to `main` as new ones, and theirs to
+/// `dynamic`, all of which is change.
+void add_moving_paths(const FrameContext& context, const StoredPaths& paths, const PhotonSettings& settings,
+                      MapKind kind, PhotonSplit split, bool dynamic_map, Composition& main,
+                      std::vector<Photon>* dynamic) {
+    if (split.count(PhotonGroup::moving) == 0) return;
+    SL_CHECK(split.still == paths.count);  // the frame splits its paths as its segment's static pass did
+    const PhotonTracer tracer(context, settings, kind, Visibility::everything,
+                              paths.targets ? &*paths.targets : nullptr);
+    TracedPaths moving = trace_paths(tracer, kind, split, split.still, split.total, dynamic_map);
+    for (const Photon& photon : moving.main) {
+        main.added_ids.push_back(uint32_t(main.photons.size()));
+        main.photons.push_back(photon);
+    }
+    if (dynamic) dynamic->insert(dynamic->end(), moving.dynamic.begin(), moving.dynamic.end());
+}
+
 long changed_count(const std::vector<ChunkChanges>& changes) {
     long count = 0;
     for (const ChunkChanges& chunk_changes : changes) count += long(chunk_changes.paths.size());
@@ -199,19 +219,23 @@ StaticPhotonPaths trace_static_photon_paths(const FrameContext& context, const P
 ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonPaths& paths) {
     ComposedPhotons out;
     const StoredPaths& global = paths.global;
-    // As trace_photons: the dynamic map comes from the global paths, where there are dynamic objects.
-    const bool dynamic = !context.scene.dynamic_objects().empty();
+    // As trace_photons: the dynamic map comes from the global paths, where something moves.
+    const bool dynamic = has_dynamic_map(context);
+    const PhotonSplit global_split = context.lights.split(path_count(context, paths.settings, MapKind::global));
     const std::vector<ChunkChanges> global_changes =
         retrace_changed(context, paths.settings, global, MapKind::global, dynamic);
     Composition composed = compose_main(global, global_changes);
+    std::vector<Photon> dynamic_photons = compose_dynamic(global, global_changes);
+    add_moving_paths(context, global, paths.settings, MapKind::global, global_split, dynamic, composed,
+                     &dynamic_photons);
     out.global_static_ids.assign(composed.photons.size(), PointIndex::removed);
     for (size_t i = 0; i < composed.base_ids.size(); ++i)
         if (composed.base_ids[i] != PointIndex::removed) out.global_static_ids[composed.base_ids[i]] = uint32_t(i);
     out.changed_global_points = changed_points(global.photons, composed);
-    out.maps.global = PhotonMap(std::move(composed.photons), global.count, global.photons, std::move(composed.base_ids),
-                                std::move(composed.added_ids));
-    out.maps.dynamic = PhotonMap(compose_dynamic(global, global_changes), dynamic ? global.count : 0);
-    out.retraced_paths = changed_count(global_changes);
+    out.maps.global = PhotonMap(std::move(composed.photons), global_split.total, global.photons,
+                                std::move(composed.base_ids), std::move(composed.added_ids));
+    out.maps.dynamic = PhotonMap(std::move(dynamic_photons), dynamic ? global_split.total : 0);
+    out.retraced_paths = changed_count(global_changes) + global_split.count(PhotonGroup::moving);
 
     const StoredPaths& caustic = paths.caustic;
     if (caustic.count > 0 && !(CausticTargets(context, Visibility::everything) == *caustic.targets)) {
@@ -221,13 +245,15 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
         out.caustic_traced = true;
         return out;
     }
+    const PhotonSplit caustic_split = context.lights.split(path_count(context, paths.settings, MapKind::caustic));
     const std::vector<ChunkChanges> caustic_changes =
         retrace_changed(context, paths.settings, caustic, MapKind::caustic, false);
     composed = compose_main(caustic, caustic_changes);
+    add_moving_paths(context, caustic, paths.settings, MapKind::caustic, caustic_split, false, composed, nullptr);
     out.changed_caustic_points = changed_points(caustic.photons, composed);
-    out.maps.caustic = PhotonMap(std::move(composed.photons), caustic.count, caustic.photons,
+    out.maps.caustic = PhotonMap(std::move(composed.photons), caustic_split.total, caustic.photons,
                                  std::move(composed.base_ids), std::move(composed.added_ids));
-    out.caustic_retraced_paths = changed_count(caustic_changes);
+    out.caustic_retraced_paths = changed_count(caustic_changes) + caustic_split.count(PhotonGroup::moving);
     out.retraced_paths += out.caustic_retraced_paths;
     return out;
 }

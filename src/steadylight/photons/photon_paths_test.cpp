@@ -86,8 +86,24 @@ TEST_P(ComposedMapsOnScene, LookUpsEqualAnIndexBuiltOverTheWholeMap) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ComposedMapsOnScene,
-                         ::testing::Values(SceneFrames{"ball", {30, 0, 31, 59}}, SceneFrames{"table", {45, 12, 13}}),
+                         ::testing::Values(SceneFrames{"ball", {30, 0, 31, 59}}, SceneFrames{"table", {45, 12, 13}},
+                                           SceneFrames{"torch_corridor", {15, 0, 29}}),
                          [](const auto& param_info) { return param_info.param.scene; });
+
+// A sun that turns is the daylit room's only light: the static paths hold no photon, and every
+// frame traces all of its photons, which are all change (the dynamic map), as full tracing does.
+TEST(ComposedMaps, OnlyAMovingLightGivesEmptyStaticPathsAndTracedMaps) {
+    const Scene scene = load("daylit_sweep");
+    const StaticPhotonPaths paths = trace_static_photon_paths(PreparedFrame(scene, 0).context(), settings);
+    EXPECT_EQ(paths.global.count, 0);
+    EXPECT_EQ(paths.global.photons.size(), 0u);
+    const PreparedFrame placed(scene, 20);
+    const ComposedPhotons composed = compose_photons(placed.context(), paths);
+    const TracedPhotons traced = trace_photons(placed.context(), settings);
+    expect_same_maps(composed, traced, "daylit_sweep frame 20");
+    EXPECT_EQ(composed.maps.global.emitted(), settings.global_photons);
+    EXPECT_GT(traced.dynamic.size(), traced.global.size() / 3);  // every photon after its first bounce
+}
 
 // The static pass's cache may start from the paths' global map: it is the static map.
 TEST(ComposedMaps, StaticPathsHoldTheStaticMap) {

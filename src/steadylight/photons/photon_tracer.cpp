@@ -9,16 +9,20 @@
 
 namespace steadylight {
 
-void PhotonTracer::trace(uint64_t index, float scale, PhotonOutput out) const {
+void PhotonTracer::trace(uint64_t index, PhotonGroup group, float scale, PhotonOutput out) const {
     PhotonSampler sampler(index);
     const float u_select = sampler.next();
     const Vec2 u_position = sampler.next_vec2();
     const Vec2 u_direction = sampler.next_vec2();
-    const std::optional<EmissionSample> e = emit(u_select, u_position, u_direction);
+    const std::optional<EmissionSample> e = emit(group, u_select, u_position, u_direction);
     if (!e || is_black(e->power)) return;
     // Photons from area lights leave the surface; point lights have no surface to leave.
     const Ray ray = length2(e->n) > 0 ? spawn_ray(e->p, e->n, e->d) : Ray{e->p, e->d};
-    follow({ray, e->power * scale, sampler}, out);
+    PhotonPath path{ray, e->power * scale, sampler};
+    // The static pass holds none of a moving light's light: its photons are change from the start
+    // (their indirect hits go to the dynamic map, and there is no static path to take back).
+    path.dynamic = group == PhotonGroup::moving;
+    follow(path, out);
 }
 
 void PhotonTracer::resume(uint64_t index, const PathSegment& segment, int bounce, PhotonOutput out) const {
@@ -28,10 +32,11 @@ void PhotonTracer::resume(uint64_t index, const PathSegment& segment, int bounce
 }
 
 /// A photon's start: aimed at the caustic targets where that pays, else as its light emits.
-std::optional<EmissionSample> PhotonTracer::emit(float u_select, Vec2 u_position, Vec2 u_direction) const {
+std::optional<EmissionSample> PhotonTracer::emit(PhotonGroup group, float u_select, Vec2 u_position,
+                                                 Vec2 u_direction) const {
     const LightSet& lights = m_context.lights;
     if (m_targets) {
-        const std::optional<EmissionPoint> at = lights.sample_emission_point(u_select, u_position);
+        const std::optional<EmissionPoint> at = lights.sample_emission_point(group, u_select, u_position);
         // Lights from far away are never aimed (their points have no pdf).
         const std::optional<AimedDirection> aim =
             at && at->pdf > 0 ? m_targets->sample(at->p, u_direction) : std::nullopt;
@@ -40,7 +45,7 @@ std::optional<EmissionSample> PhotonTracer::emit(float u_select, Vec2 u_position
             return EmissionSample{at->p, n, aim->d, lights.emitted_intensity(*at, aim->d) / (at->pdf * aim->pdf)};
         }
     }
-    return lights.sample_emission(u_select, u_position, u_direction);
+    return lights.sample_emission(group, u_select, u_position, u_direction);
 }
 
 void PhotonTracer::store(const PhotonPath& path, const Photon& photon, PhotonOutput out) const {
@@ -112,27 +117,38 @@ void PhotonTracer::follow(PhotonPath path, PhotonOutput out) const {
     }
 }
 
+TracedPaths trace_paths(const PhotonTracer& tracer, MapKind kind, PhotonSplit split, long begin, long end,
+                        bool dynamic) {
+    // Chunks store into their own vectors, joined in chunk order: the same maps for any threads.
+    constexpr long chunk = 4096;
+    const long count = std::max(end - begin, 0L);
+    const size_t chunks = size_t((count + chunk - 1) / chunk);
+    std::vector<std::vector<Photon>> main(chunks), dynamic_photons(chunks);
+    parallel_for_chunks(count, chunk, [&](long chunk_begin, long chunk_end) {
+        const size_t c = size_t(chunk_begin / chunk);
+        const PhotonOutput out{main[c], dynamic ? &dynamic_photons[c] : nullptr};
+        for (long i = begin + chunk_begin; i < begin + chunk_end; ++i) {
+            const PhotonGroup group = split.group_of(i);
+            tracer.trace(first_photon_index(kind) + uint64_t(i), group, 1.0f / float(split.count(group)), out);
+        }
+    });
+    return {join(main), join(dynamic_photons)};
+}
+
 namespace {
 
-/// The photons of `count` paths of one kind, and of the dynamic map when `dynamic` is set.
+/// The photons of `count` paths of one kind, and of the dynamic map when `dynamic` is set. The
+/// static scene (Visibility::static_only) holds the still lights' photons only.
 std::pair<PhotonMap, PhotonMap> trace_map(const FrameContext& context, long count, MapKind kind,
                                           const PhotonSettings& settings, Visibility visibility, bool dynamic) {
     if (count <= 0 || context.lights.empty()) return {};
-    // Chunks store into their own vectors, joined in chunk order: the same maps for any threads.
-    constexpr long chunk = 4096;
-    const size_t chunks = size_t((count + chunk - 1) / chunk);
-    std::vector<std::vector<Photon>> main(chunks), dynamic_photons(chunks);
-    const uint64_t first = first_photon_index(kind);
-    const float scale = 1.0f / float(count);
+    const PhotonSplit split = context.lights.split(count);
+    const long traced = visibility == Visibility::static_only ? split.still : count;
     const std::optional<CausticTargets> targets =
         kind == MapKind::caustic ? std::optional<CausticTargets>(std::in_place, context, visibility) : std::nullopt;
     const PhotonTracer tracer(context, settings, kind, visibility, targets ? &*targets : nullptr);
-    parallel_for_chunks(count, chunk, [&](long begin, long end) {
-        const size_t c = size_t(begin / chunk);
-        const PhotonOutput out{main[c], dynamic ? &dynamic_photons[c] : nullptr};
-        for (long i = begin; i < end; ++i) tracer.trace(first + uint64_t(i), scale, out);
-    });
-    return {PhotonMap(join(main), count), PhotonMap(join(dynamic_photons), dynamic ? count : 0)};
+    TracedPaths paths = trace_paths(tracer, kind, split, 0, traced, dynamic);
+    return {PhotonMap(std::move(paths.main), traced), PhotonMap(std::move(paths.dynamic), dynamic ? traced : 0)};
 }
 
 }  // namespace
@@ -148,8 +164,12 @@ bool has_non_diffuse_surface(const FrameContext& context) {
     return false;
 }
 
+bool has_dynamic_map(const FrameContext& context) {
+    return !context.scene.dynamic_objects().empty() || context.lights.has_moving();
+}
+
 TracedPhotons trace_photons(const FrameContext& context, const PhotonSettings& settings, Visibility visibility) {
-    const bool dynamic = visibility == Visibility::everything && !context.scene.dynamic_objects().empty();
+    const bool dynamic = visibility == Visibility::everything && has_dynamic_map(context);
     auto [global, dynamic_map] =
         trace_map(context, settings.global_photons, MapKind::global, settings, visibility, dynamic);
     const long caustic_count = has_non_diffuse_surface(context) ? settings.caustic_photons : 0;

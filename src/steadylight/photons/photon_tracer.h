@@ -117,13 +117,14 @@ public:
                  const CausticTargets* targets)
         : m_context(context), m_settings(settings), m_kind(kind), m_visibility(visibility), m_targets(targets) {}
 
-    /// Emits photon `index` from the lights and follows it and any negative photon it spawns.
-    void trace(uint64_t index, float scale, PhotonOutput out) const;
+    /// Emits photon `index` from the lights of `group` and follows it and any negative photon it
+    /// spawns; `scale` spreads the group's power over its photons (1 / their number).
+    void trace(uint64_t index, PhotonGroup group, float scale, PhotonOutput out) const;
     /// Follows photon `index` on from `segment`, the ray of its bounce `bounce`, as trace() would.
     void resume(uint64_t index, const PathSegment& segment, int bounce, PhotonOutput out) const;
 
 private:
-    std::optional<EmissionSample> emit(float u_select, Vec2 u_position, Vec2 u_direction) const;
+    std::optional<EmissionSample> emit(PhotonGroup group, float u_select, Vec2 u_position, Vec2 u_direction) const;
     void follow(PhotonPath path, PhotonOutput out) const;
     void store(const PhotonPath& path, const Photon& photon, PhotonOutput out) const;
 
@@ -150,5 +151,18 @@ std::vector<T> join(const std::vector<std::vector<T>>& parts) {
 
 /// Caustic paths need a specular or glossy surface; without one the caustic map stays empty.
 bool has_non_diffuse_surface(const FrameContext& context);
+
+/// A frame has a dynamic map where something moves: a dynamic object, or a light whose photons
+/// are traced every frame (PhotonGroup::moving).
+bool has_dynamic_map(const FrameContext& context);
+
+/// The photons of paths [begin, end) of a map of `kind` split as `split` says, each path
+/// emitted from its group's lights and weighted by its group's count, in path order; and the
+/// dynamic map's when `dynamic` is set.
+struct TracedPaths {
+    std::vector<Photon> main, dynamic;
+};
+TracedPaths trace_paths(const PhotonTracer& tracer, MapKind kind, PhotonSplit split, long begin, long end,
+                        bool dynamic);
 
 }  // namespace steadylight

@@ -34,12 +34,12 @@ void evaluate_lights(const SceneDesc& desc, float time_s, FrameState& state) {
     for (const SunLightDesc& sun : desc.suns) state.sun_directions.push_back(sun.direction_at(time_s));
 }
 
-/// True when some light at `frame` is switched, dimmed or moved from the frame before.
+/// True when some light at `frame` is switched or dimmed from the frame before.
 bool lights_change_at(const SceneDesc& desc, int frame) {
     FrameState before, now;
     evaluate_lights(desc, desc.frame_time_s(frame - 1), before);
     evaluate_lights(desc, desc.frame_time_s(frame), now);
-    return !now.same_lights(before);
+    return !now.same_light_levels(before);
 }
 
 std::vector<Segment> split_into_segments(const SceneDesc& desc) {

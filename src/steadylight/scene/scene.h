@@ -51,8 +51,14 @@ struct FrameState {
 
     /// True when every light, lamps and suns, is where and as bright as in `other` (the same scene).
     bool same_lights(const FrameState& other) const {
-        return emission == other.emission && point_lights == other.point_lights &&
-               sun_directions == other.sun_directions;
+        return same_light_levels(other) && point_lights == other.point_lights && sun_directions == other.sun_directions;
+    }
+    /// True when every light is as bright as in `other`, wherever it stands.
+    bool same_light_levels(const FrameState& other) const {
+        if (emission != other.emission || point_lights.size() != other.point_lights.size()) return false;
+        for (size_t i = 0; i < point_lights.size(); ++i)
+            if (point_lights[i].intensity != other.point_lights[i].intensity) return false;
+        return true;
     }
 };
 
@@ -68,10 +74,10 @@ public:
     const std::vector<int>& dynamic_objects() const { return m_dynamic; }
     int frame_count() const { return m_desc.frame_count; }
     /// The animation's segments (docs/design.md): one by default; a new one where the scene file
-    /// says, at every frame where an emission, a lamp's intensity, place or direction or a sun's
-    /// direction differs from the frame before (a light switched, dimmed or moved), and every
-    /// frame on its own while an emitter moves (its light changes every frame). Within a
-    /// segment the lights are constant.
+    /// says, at every frame where an emission or a lamp's intensity differs from the frame before
+    /// (a light switched or dimmed), and every frame on its own while an emitter moves (its light
+    /// changes every frame). Within a segment the lights are as bright throughout; lamps and suns
+    /// that move are lit apart (PhotonGroup::moving).
     const std::vector<Segment>& segments() const { return m_segments; }
     const Segment& segment_of(int frame) const;
 

@@ -96,6 +96,21 @@ inline Ray shadow_ray(const LightSample& light, Vec3 p, Vec3 ng) {
     return std::isinf(light.distance) ? spawn_ray(p, ng, light.wi) : spawn_ray_to(p, ng, light.p);
 }
 
+/// The lights whose photons a photon pass emits apart (docs/localized.md, "Lights that move"):
+/// those that stand still through the animation, and the lamps and suns that move, whose photons
+/// are traced afresh every frame.
+enum class PhotonGroup { still, moving };
+
+/// How the photon paths of a map split between the groups, in proportion to their power, so that
+/// every photon carries the same power: paths [0, still) leave the still lights, [still, total)
+/// the moving ones. A group with power gets at least one path.
+struct PhotonSplit {
+    long still = 0, total = 0;
+
+    long count(PhotonGroup group) const { return group == PhotonGroup::still ? still : total - still; }
+    PhotonGroup group_of(long path) const { return path < still ? PhotonGroup::still : PhotonGroup::moving; }
+};
+
 class LightSet {
 public:
     /// The lights that are on at `frame`; a light whose emission or intensity is black at the
@@ -117,11 +132,19 @@ public:
     /// lights, the power choice.
     std::optional<LightSample> sample_reusing(Vec3 ref, Vec3 n, Vec2 u) const;
     static constexpr size_t max_lights_by_importance = 32;
-    /// Picks a light in proportion to power with `u_select` and samples a photon start from it.
+    /// Picks a light in proportion to power with `u_select` and samples a photon start from it;
+    /// with `group`, among that group's lights only.
     std::optional<EmissionSample> sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const;
-    /// \brief Picks a light in proportion to power with `u_select` and a point on it; the photon's
-    /// direction is the caller's (power = emitted_intensity / (pdf of the point and direction)).
-    std::optional<EmissionPoint> sample_emission_point(float u_select, Vec2 u_position) const;
+    std::optional<EmissionSample> sample_emission(PhotonGroup group, float u_select, Vec2 u_position,
+                                                  Vec2 u_direction) const;
+    /// \brief Picks a light of `group` in proportion to power with `u_select` and a point on it;
+    /// the photon's direction is the caller's (power = emitted_intensity / (pdf of the point and
+    /// direction)).
+    std::optional<EmissionPoint> sample_emission_point(PhotonGroup group, float u_select, Vec2 u_position) const;
+    /// `paths` photon paths split between the groups by their power.
+    PhotonSplit split(long paths) const;
+    /// True when some light that is on moves (PhotonGroup::moving).
+    bool has_moving() const { return !m_group_lights[1].empty(); }
     Rgb emitted_intensity(const EmissionPoint& at, Vec3 d) const {
         return m_lights[at.light]->emitted_intensity(at, d);
     }
@@ -138,12 +161,20 @@ public:
 
 private:
     std::vector<std::unique_ptr<Light>> m_lights;
-    std::vector<float> m_cdf;            // over m_lights, by power
+    std::vector<float> m_cdf;  // over m_lights, by power
+    // Per photon group: its lights (indices into m_lights) and a cdf over them by power.
+    std::vector<size_t> m_group_lights[2];
+    std::vector<float> m_group_cdf[2];
+    float m_group_power[2] = {0, 0};
     std::vector<int> m_light_of_object;  // object -> index in m_lights, or -1
     size_t m_first_distant = 0;          // the lights from far away come last
 
     /// The light `u_select` picks and the probability of picking it.
     std::pair<size_t, float> choose(float u_select) const;
+    /// The light of `group` that `u_select` picks and the probability of picking it within the group.
+    std::pair<size_t, float> choose(PhotonGroup group, float u_select) const;
+    /// A photon start from light `i`, picked with probability `p_select`.
+    std::optional<EmissionSample> emission_from(size_t i, float p_select, Vec2 u_position, Vec2 u_direction) const;
     /// Samples light `i`, chosen with probability `p_select` by u.x in [lo, lo + p_select): the
     /// rest of u.x, rescaled to [0,1), and u.y place the point on it; the pdf includes the choice.
     std::optional<LightSample> sample_chosen(size_t i, float lo, float p_select, Vec3 ref, Vec3 n, Vec2 u) const;

@@ -32,43 +32,85 @@ float area_to_solid_angle(float pdf_area, Vec3 ref, Vec3 p, Vec3 n) {
     return cos_light > 0 ? pdf_area * distance2 / cos_light : 0;
 }
 
+namespace {
+
+/// A cdf over `lights` (indices into `all`) by power; uniform if none has any.
+std::vector<float> power_cdf(const std::vector<std::unique_ptr<Light>>& all, const std::vector<size_t>& lights) {
+    float total = 0;
+    for (const size_t i : lights) total += all[i]->power();
+    std::vector<float> cdf;
+    for (const size_t i : lights) {
+        const float weight = total > 0 ? all[i]->power() / total : 1.0f / float(lights.size());
+        cdf.push_back((cdf.empty() ? 0 : cdf.back()) + weight);
+    }
+    if (!cdf.empty()) cdf.back() = 1;
+    return cdf;
+}
+
+/// The entry of `cdf` that `u` picks and its probability.
+std::pair<size_t, float> pick(const std::vector<float>& cdf, float u) {
+    const size_t i = std::min(size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()), cdf.size() - 1);
+    return {i, cdf[i] - (i ? cdf[i - 1] : 0)};
+}
+
+}  // namespace
+
 LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_object(scene.objects().size(), -1) {
+    std::vector<bool> moving;
     for (int object = 0; object < int(scene.objects().size()); ++object) {
         if (is_black(frame.emission[size_t(object)])) continue;
         m_light_of_object[size_t(object)] = int(m_lights.size());
         m_lights.push_back(make_area_light(scene, frame, object));
+        moving.push_back(false);  // an emitter that moves makes every frame a segment of its own
     }
     for (size_t i = 0; i < scene.desc().point_lights.size(); ++i)
-        if (!is_black(frame.point_lights[i].intensity))
+        if (!is_black(frame.point_lights[i].intensity)) {
             m_lights.push_back(make_point_light(scene.desc().point_lights[i], frame.point_lights[i]));
+            moving.push_back(scene.desc().point_lights[i].is_moving());
+        }
     m_first_distant = m_lights.size();
     for (size_t i = 0; i < scene.desc().suns.size(); ++i)
-        if (!is_black(scene.desc().suns[i].irradiance))
+        if (!is_black(scene.desc().suns[i].irradiance)) {
             m_lights.push_back(make_sun_light(scene.desc().suns[i], frame.sun_directions[i], scene.bounds(),
                                               scene.desc().portals, scene.distant_photon_targets()));
-    if (scene.desc().world && !scene.desc().world->radiance->is_black())
+            moving.push_back(scene.desc().suns[i].is_moving());
+        }
+    if (scene.desc().world && !scene.desc().world->radiance->is_black()) {
         m_lights.push_back(make_world_light(*scene.desc().world, scene.bounds(), scene.desc().portals,
                                             scene.distant_photon_targets()));
+        moving.push_back(false);
+    }
 
     // Choose lights in proportion to power; uniformly if none has any.
-    float total = 0;
-    for (const auto& light : m_lights) total += light->power();
+    std::vector<size_t> every(m_lights.size());
     for (size_t i = 0; i < m_lights.size(); ++i) {
-        const float weight = total > 0 ? m_lights[i]->power() / total : 1.0f / float(m_lights.size());
-        m_cdf.push_back((m_cdf.empty() ? 0 : m_cdf.back()) + weight);
+        every[i] = i;
+        m_group_lights[moving[i]].push_back(i);
+        m_group_power[moving[i]] += m_lights[i]->power();
     }
-    if (!m_cdf.empty()) m_cdf.back() = 1;
+    m_cdf = power_cdf(m_lights, every);
+    for (int group = 0; group < 2; ++group) m_group_cdf[group] = power_cdf(m_lights, m_group_lights[group]);
 }
 
-std::pair<size_t, float> LightSet::choose(float u_select) const {
-    const size_t i =
-        std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u_select) - m_cdf.begin()), m_lights.size() - 1);
-    return {i, m_cdf[i] - (i ? m_cdf[i - 1] : 0)};
+std::pair<size_t, float> LightSet::choose(float u_select) const { return pick(m_cdf, u_select); }
+
+std::pair<size_t, float> LightSet::choose(PhotonGroup group, float u_select) const {
+    const auto [member, p_select] = pick(m_group_cdf[int(group)], u_select);
+    return {m_group_lights[int(group)][member], p_select};
 }
 
-std::optional<EmissionSample> LightSet::sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const {
-    if (m_lights.empty()) return std::nullopt;
-    const auto [i, p_select] = choose(u_select);
+PhotonSplit LightSet::split(long paths) const {
+    const float still = m_group_power[0], moving = m_group_power[1];
+    if (m_group_lights[1].empty()) return {paths, paths};
+    if (m_group_lights[0].empty()) return {0, paths};
+    const float share = still + moving > 0 ? still / (still + moving) : 0.5f;
+    const long count =
+        std::clamp(long(std::lround(double(share) * double(paths))), std::min(1L, paths - 1), std::max(paths - 1, 0L));
+    return {count, paths};
+}
+
+std::optional<EmissionSample> LightSet::emission_from(size_t i, float p_select, Vec2 u_position,
+                                                      Vec2 u_direction) const {
     if (p_select <= 0) return std::nullopt;
     std::optional<EmissionSample> s = m_lights[i]->sample_emission(u_position, u_direction);
     if (s) {
@@ -78,9 +120,22 @@ std::optional<EmissionSample> LightSet::sample_emission(float u_select, Vec2 u_p
     return s;
 }
 
-std::optional<EmissionPoint> LightSet::sample_emission_point(float u_select, Vec2 u_position) const {
+std::optional<EmissionSample> LightSet::sample_emission(float u_select, Vec2 u_position, Vec2 u_direction) const {
     if (m_lights.empty()) return std::nullopt;
     const auto [i, p_select] = choose(u_select);
+    return emission_from(i, p_select, u_position, u_direction);
+}
+
+std::optional<EmissionSample> LightSet::sample_emission(PhotonGroup group, float u_select, Vec2 u_position,
+                                                        Vec2 u_direction) const {
+    if (m_group_lights[int(group)].empty()) return std::nullopt;
+    const auto [i, p_select] = choose(group, u_select);
+    return emission_from(i, p_select, u_position, u_direction);
+}
+
+std::optional<EmissionPoint> LightSet::sample_emission_point(PhotonGroup group, float u_select, Vec2 u_position) const {
+    if (m_group_lights[int(group)].empty()) return std::nullopt;
+    const auto [i, p_select] = choose(group, u_select);
     if (p_select <= 0) return std::nullopt;
     EmissionPoint at = m_lights[i]->sample_emission_point(u_position);
     at.light = i;
