@@ -269,6 +269,13 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayT
         spdlog::info("pixel reuse: off for frames {}-{}: the camera moves", segment.first, segment.last);
         return nullptr;
     }
+    // A frame reuses the static frame's pixels only where its lights are the static frame's.
+    const FrameState first = scene.evaluate(segment.first);
+    for (int frame = segment.first + 1; frame <= segment.last; ++frame)
+        if (!scene.evaluate(frame).same_lights(first)) {
+            spdlog::info("pixel reuse: off for frames {}-{}: lights move", segment.first, segment.last);
+            return nullptr;
+        }
     const Camera& camera = scene.evaluate(segment.first).camera;
     const int samples = photon.shading.samples_per_pixel;
     const double bytes = double(camera.width) * double(camera.height) * double(StaticFrame::bytes_per_pixel(samples));
