@@ -41,8 +41,9 @@ namespace {
 const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 
 struct Options {
-    std::vector<std::string> scenes{"table", "corridor", "mirror_room", "glass_move", "flythrough",
-                                    "ball",  "cornell",  "daylit_room", "daylit_sun", "outdoor_hdri"};
+    std::vector<std::string> scenes{"table",      "corridor",     "mirror_room",    "glass_move",
+                                    "flythrough", "ball",         "cornell",        "daylit_room",
+                                    "daylit_sun", "outdoor_hdri", "torch_corridor", "daylit_sweep"};
     std::vector<Method> methods{Method::photon, Method::localized, Method::frozen};
     bool pairs = true;
     std::string save_dir;  // empty: nothing written
