@@ -1,8 +1,7 @@
 // Lights that move (tests/scenes/moving_lamps.json: a torch carried across a room, a sun turning,
-// lighting it through a window, a glowing lantern floating across, a ball rolling). Lamps and
-// suns that move are lit apart from the static pass (their photons traced every frame, all of
-// them change: docs/localized.md, "Lights that move"); an emitting object that moves makes every
-// frame a segment of its own. Either way a frame is the still scene with its lights where they
+// lighting it through a window, a glowing lantern floating across, a ball rolling) are lit apart
+// from the static pass: their photons are traced every frame, and all of them are change
+// (docs/localized.md, "Lights that move"). A frame is the still scene with its lights where they
 // are then: bit for bit where the same photons light both, else within the photons' noise.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -36,8 +35,9 @@ void hold_last_keys(nlohmann::json& animation) {
 
 /// What of moving_lamps.json stands still where the animation leaves it (frame 2).
 struct Still {
-    bool lamps = false;    // the torch and the sun
-    bool lantern = false;  // the emitting object (kept marked dynamic, as its moving self is)
+    bool lamps = false;          // the torch and the sun
+    bool lantern = false;        // the emitting object (kept marked dynamic, as its moving self is)
+    bool lantern_grows = false;  // instead, the lantern doubles in size as it moves
 };
 
 /// moving_lamps.json with `still` standing still, written as `name`.json into `dir`.
@@ -52,6 +52,10 @@ std::string write_scene(const fs::path& dir, const std::string& name, Still stil
                 hold_last_keys(object["animation"]);
                 object["dynamic"] = true;
             }
+    if (still.lantern_grows)
+        for (nlohmann::json& object : scene["objects"])
+            if (object.contains("emission"))
+                object["animation"]["scale"] = {{"times", {0, 2}}, {"values", {{1, 1, 1}, {2, 2, 2}}}};
     const fs::path file = dir / (name + ".json");
     std::ofstream(file) << scene.dump(1);
     return file.string();
@@ -95,17 +99,17 @@ protected:
     fs::path m_dir;
 };
 
-TEST_F(MovingLights, LampsAndSunsThatMoveKeepTheSegmentAndAnEmitterThatMovesSplitsIt) {
+TEST_F(MovingLights, LightsThatMoveKeepTheSegmentUnlessAnEmitterChangesSize) {
     const Scene scene(load_scene_desc(moving_lamps));
     EXPECT_TRUE(scene.desc().point_lights.at(0).is_moving());
     EXPECT_TRUE(scene.desc().suns.at(0).is_moving());
     const int lantern = int(scene.objects().size()) - 1;
-    EXPECT_TRUE(scene.object(lantern).is_emitter());
-    EXPECT_TRUE(scene.object(lantern).is_dynamic());
-    EXPECT_EQ(scene.segments().size(), 3u);  // the lantern: every frame its own
-    const Scene lantern_still(load_scene_desc(write_scene(m_dir, "lantern_still", {.lantern = true})));
-    EXPECT_EQ(lantern_still.segments().size(), 3u);  // marked dynamic, still an emitter that may move
-    const Scene only_lamps_move(load_scene_desc(write_scene(m_dir, "only_lamps", {.lantern = true})));
+    EXPECT_TRUE(scene.object(lantern).is_moving_light());
+    EXPECT_EQ(scene.segments().size(), 1u);
+    // An emitter that grows changes its power every frame: every frame is its own segment.
+    const Scene grows(load_scene_desc(write_scene(m_dir, "lantern_grows", {.lantern_grows = true})));
+    EXPECT_FALSE(grows.object(lantern).is_moving_light());
+    EXPECT_EQ(grows.segments().size(), 3u);
     const Scene all_still(load_scene_desc(write_scene(m_dir, "all_still", {.lamps = true, .lantern = true})));
     EXPECT_FALSE(all_still.desc().point_lights.at(0).is_moving());
     EXPECT_FALSE(all_still.desc().suns.at(0).is_moving());
@@ -126,8 +130,9 @@ TEST_F(MovingLights, PathTracedFrameIsTheStillSceneBitForBit) {
     EXPECT_FALSE(moving[0].pixels == moving[2].pixels);
 }
 
-// An emitting object that moves gives every frame its own static pass: with the lamps still, each
-// photon method's frame is bit for bit the scene whose lantern stands there.
+// An emitting object that moves is lit apart as the lamps are: with the lamps still, each photon
+// method's frame is bit for bit the scene whose lantern stands there (marked dynamic, so that it
+// is lit apart too).
 TEST_F(MovingLights, EmitterThatMovesGivesTheStillEmittersFrameBitForBit) {
     const std::string lantern_moves = write_scene(m_dir, "lantern_moves", {.lamps = true});
     const std::string all_still = write_scene(m_dir, "all_still", {.lamps = true, .lantern = true});

@@ -44,16 +44,19 @@ bool has_light(const SceneDesc& desc) {
            has_distant_light(desc);
 }
 
-/// True when a lamp or a sun moves (PhotonGroup::moving).
-bool moves_a_lamp_or_sun(const SceneDesc& desc) {
+/// True when a lamp, a sun or an emitting object moves (PhotonGroup::moving).
+bool moves_a_light(const SceneDesc& desc) {
     return std::any_of(desc.point_lights.begin(), desc.point_lights.end(),
                        [](const PointLightDesc& light) { return light.is_moving(); }) ||
-           std::any_of(desc.suns.begin(), desc.suns.end(), [](const SunLightDesc& sun) { return sun.is_moving(); });
+           std::any_of(desc.suns.begin(), desc.suns.end(), [](const SunLightDesc& sun) { return sun.is_moving(); }) ||
+           std::any_of(desc.objects.begin(), desc.objects.end(),
+                       [](const ObjectDesc& o) { return o.is_moving_light(); });
 }
 
-/// True when some light stands still: an emitting object, a lamp or sun that does not move, the world.
+/// True when some light stands still: an emitter, a lamp or a sun that does not move, the world.
 bool has_still_light(const SceneDesc& desc) {
-    return std::any_of(desc.objects.begin(), desc.objects.end(), [](const ObjectDesc& o) { return o.is_emitter(); }) ||
+    return std::any_of(desc.objects.begin(), desc.objects.end(),
+                       [](const ObjectDesc& o) { return o.is_emitter() && !o.is_moving_light(); }) ||
            std::any_of(desc.point_lights.begin(), desc.point_lights.end(),
                        [](const PointLightDesc& light) { return !light.is_moving(); }) ||
            std::any_of(desc.suns.begin(), desc.suns.end(), [](const SunLightDesc& sun) { return !sun.is_moving(); }) ||
@@ -69,10 +72,9 @@ Scene load_scene(const RenderSettings& settings) {
             "intensity, no sun, no world): every frame renders black",
             settings.scene_file);
     // Lights that move are lit apart from the static pass (docs/localized.md, "Lights that move").
-    if (settings.method == Method::frozen && moves_a_lamp_or_sun(desc))
-        spdlog::warn("{}: lamps or suns move: the frozen baseline leaves out their indirect light",
-                     settings.scene_file);
-    if (settings.method == Method::localized && moves_a_lamp_or_sun(desc) && !has_still_light(desc))
+    if (settings.method == Method::frozen && moves_a_light(desc))
+        spdlog::warn("{}: lights move: the frozen baseline leaves out their indirect light", settings.scene_file);
+    if (settings.method == Method::localized && moves_a_light(desc) && !has_still_light(desc))
         spdlog::info(
             "{}: every light moves, so the static pass holds no light and every frame gathers anew: the photon method "
             "(--method photon) renders this faster",

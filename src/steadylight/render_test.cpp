@@ -145,7 +145,7 @@ TEST_F(RenderResume, TransparentBackgroundWritesAlphaAndIsASetting) {
 
 TEST(Info, NamesMovingLightsAndTheSegmentsTheyMake) {
     const std::string text = describe_scene(std::string(STEADYLIGHT_SOURCE_DIR) + "/tests/scenes/moving_lamps.json");
-    EXPECT_NE(text.find("3 segment(s): 0-0, 1-1, 2-2"), std::string::npos) << text;
+    EXPECT_NE(text.find("3 at 1 fps (from the scene file) (3.00 s), 1 segment(s)"), std::string::npos) << text;
     EXPECT_NE(text.find("lights: 1 area, 1 point/spot, 1 sun, 3 animated (switched, dimmed or moved"),
               std::string::npos)
         << text;

@@ -269,10 +269,13 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayT
         spdlog::info("pixel reuse: off for frames {}-{}: the camera moves", segment.first, segment.last);
         return nullptr;
     }
-    // A frame reuses the static frame's pixels only where its lights are the static frame's.
+    // A frame reuses the static frame's pixels only where its lights are the static frame's (and
+    // never beside an emitter that moves).
     const FrameState first = scene.evaluate(segment.first);
+    const bool emitter_moves = std::any_of(scene.dynamic_objects().begin(), scene.dynamic_objects().end(),
+                                           [&](int object) { return scene.object(object).is_moving_light(); });
     for (int frame = segment.first + 1; frame <= segment.last; ++frame)
-        if (!scene.evaluate(frame).same_lights(first)) {
+        if (emitter_moves || !scene.evaluate(frame).same_lights(first)) {
             spdlog::info("pixel reuse: off for frames {}-{}: lights move", segment.first, segment.last);
             return nullptr;
         }

@@ -61,7 +61,8 @@ uint64_t static_inputs_hash(const Scene& scene, const Segment& segment, const Ph
         // where a light is switched or dimmed), so a cache of the light off never serves it on.
         h.add(state.emission[size_t(i)]), h.add(object.two_sided_emission);
     }
-    // A moving emitter lights the static scene from where it is at the segment's start.
+    // An emitter that moves lights no static record, but its power shares out the photons; one that
+    // changes size is a segment per frame, lighting the static scene from where it is then.
     for (const int i : scene.dynamic_objects())
         if (scene.object(i).is_emitter()) {
             h.add(state.world_from_object[size_t(i)]), h.add(state.emission[size_t(i)]);

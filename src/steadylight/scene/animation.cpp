@@ -95,6 +95,11 @@ Transform evaluate_chain(const std::vector<AnimatedTrs>& chain, float time_s) {
     return world_from_local;
 }
 
+bool is_chain_scaled(const std::vector<AnimatedTrs>& chain) {
+    return std::any_of(chain.begin(), chain.end(),
+                       [](const AnimatedTrs& n) { return n.scale_track && !n.scale_track->is_constant(); });
+}
+
 bool is_chain_animated(const std::vector<AnimatedTrs>& chain) {
     return std::any_of(chain.begin(), chain.end(), [](const AnimatedTrs& n) { return n.is_animated(); });
 }

@@ -47,5 +47,7 @@ struct AnimatedTrs {
 /// placement of a JSON object.
 Transform evaluate_chain(const std::vector<AnimatedTrs>& chain, float time_s);
 bool is_chain_animated(const std::vector<AnimatedTrs>& chain);
+/// True when some placement of the chain has a scale track that changes.
+bool is_chain_scaled(const std::vector<AnimatedTrs>& chain);
 
 }  // namespace steadylight

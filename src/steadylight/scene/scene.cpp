@@ -43,11 +43,12 @@ bool lights_change_at(const SceneDesc& desc, int frame) {
 }
 
 std::vector<Segment> split_into_segments(const SceneDesc& desc) {
-    const bool moving_light = std::any_of(desc.objects.begin(), desc.objects.end(),
-                                          [](const ObjectDesc& o) { return o.is_emitter() && o.is_dynamic(); });
+    const bool resized_light = std::any_of(desc.objects.begin(), desc.objects.end(), [](const ObjectDesc& o) {
+        return o.is_emitter() && o.is_dynamic() && !o.is_moving_light();
+    });
     std::vector<int> starts{0};
     for (int frame = 1; frame < desc.frame_count; ++frame)
-        if (moving_light || std::count(desc.segment_starts.begin(), desc.segment_starts.end(), frame) ||
+        if (resized_light || std::count(desc.segment_starts.begin(), desc.segment_starts.end(), frame) ||
             lights_change_at(desc, frame))
             starts.push_back(frame);
     std::vector<Segment> segments;

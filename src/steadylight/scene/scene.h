@@ -75,9 +75,9 @@ public:
     int frame_count() const { return m_desc.frame_count; }
     /// The animation's segments (docs/design.md): one by default; a new one where the scene file
     /// says, at every frame where an emission or a lamp's intensity differs from the frame before
-    /// (a light switched or dimmed), and every frame on its own while an emitter moves (its light
-    /// changes every frame). Within a segment the lights are as bright throughout; lamps and suns
-    /// that move are lit apart (PhotonGroup::moving).
+    /// (a light switched or dimmed), and every frame on its own while an emitter changes size (its
+    /// power changes every frame). Within a segment the lights are as bright throughout; lamps,
+    /// suns and emitters that move are lit apart (PhotonGroup::moving).
     const std::vector<Segment>& segments() const { return m_segments; }
     const Segment& segment_of(int frame) const;
 

@@ -97,6 +97,10 @@ struct ObjectDesc {
     /// Moving, or marked dynamic. Emission that changes does not count: within a segment it is
     /// constant (segments split where it changes), so it lights the static scene (docs/design.md).
     bool is_dynamic() const { return marked_dynamic || is_chain_animated(placement); }
+    /// A dynamic emitter whose size stays: lit apart from the static pass, as a lamp that moves is
+    /// (PhotonGroup::moving). One whose size changes changes its power: every frame is then a
+    /// segment of its own.
+    bool is_moving_light() const { return is_emitter() && is_dynamic() && !is_chain_scaled(placement); }
 };
 
 enum class PointLightType { point, spot };

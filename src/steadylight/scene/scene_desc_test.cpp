@@ -410,11 +410,20 @@ TEST_F(SceneFiles, SegmentStartsMustIncreaseWithinTheAnimation) {
     expect_error(write_scene(floor_quad, R"(, "frames": {"count": 10}, "segments": [12])"), {"/segments", "within"});
 }
 
-TEST_F(SceneFiles, MovingLightMakesEveryFrameItsOwnSegment) {
-    const std::string light = R"({"shape": {"type": "sphere", "radius": 0.1}, "emission": 5,
+// An emitter that moves is lit apart and keeps the segment; one that grows changes its power every
+// frame, and every frame is its own segment.
+TEST_F(SceneFiles, EmitterThatGrowsMakesEveryFrameItsOwnSegment) {
+    const std::string moves = R"({"shape": {"type": "sphere", "radius": 0.1}, "emission": 5,
         "animation": {"translation": {"times": [0, 1], "values": [[0,1,0],[1,1,0]]}}})";
-    const Scene scene(load_scene_desc(write_scene(light, R"(, "frames": {"count": 4, "fps": 4})")));
-    EXPECT_EQ(scene.segments().size(), 4u);
+    const std::string frames = R"(, "frames": {"count": 4, "fps": 4})";
+    const Scene moving(load_scene_desc(write_scene(moves, frames)));
+    EXPECT_TRUE(moving.object(0).is_moving_light());
+    EXPECT_EQ(moving.segments().size(), 1u);
+    const std::string grows = R"({"shape": {"type": "sphere", "radius": 0.1}, "emission": 5,
+        "animation": {"scale": {"times": [0, 1], "values": [[1,1,1],[2,2,2]]}}})";
+    const Scene growing(load_scene_desc(write_scene(grows, frames)));
+    EXPECT_FALSE(growing.object(0).is_moving_light());
+    EXPECT_EQ(growing.segments().size(), 4u);
 }
 
 std::string sphere_light_with_track(const std::string& track) {

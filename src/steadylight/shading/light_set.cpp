@@ -61,7 +61,7 @@ LightSet::LightSet(const Scene& scene, const FrameState& frame) : m_light_of_obj
         if (is_black(frame.emission[size_t(object)])) continue;
         m_light_of_object[size_t(object)] = int(m_lights.size());
         m_lights.push_back(make_area_light(scene, frame, object));
-        moving.push_back(false);  // an emitter that moves makes every frame a segment of its own
+        moving.push_back(scene.object(object).is_moving_light());
     }
     for (size_t i = 0; i < scene.desc().point_lights.size(); ++i)
         if (!is_black(frame.point_lights[i].intensity)) {
