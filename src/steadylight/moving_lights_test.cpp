@@ -96,6 +96,19 @@ protected:
         return images;
     }
 
+    /// Frames 0-2 of `moving` and frame 2 of `still`, rendered by `method`: frame 2 is the still
+    /// scene's bit for bit, and frame 0 differs (the lights did move).
+    void expect_last_frame_is_the_still_scenes(const std::string& moving, const std::string& still,
+                                               Method method) const {
+        SCOPED_TRACE(method_info(method).name);
+        const std::vector<Image> frames = render(moving, method, "0-2");
+        const std::vector<Image> standing = render(still, method, "2");
+        ASSERT_EQ(frames.size(), 3u);
+        ASSERT_EQ(standing.size(), 1u);
+        EXPECT_TRUE(frames[2].pixels == standing[0].pixels);
+        EXPECT_FALSE(frames[0].pixels == frames[2].pixels);
+    }
+
     fs::path m_dir;
 };
 
@@ -121,13 +134,8 @@ TEST_F(MovingLights, LightsThatMoveKeepTheSegmentUnlessAnEmitterChangesSize) {
 
 // The path tracer places every light at the frame: bit for bit the still scene, and the lights did move.
 TEST_F(MovingLights, PathTracedFrameIsTheStillSceneBitForBit) {
-    const std::vector<Image> moving = render(moving_lamps, Method::path, "0-2");
-    const std::vector<Image> standing =
-        render(write_scene(m_dir, "all_still", {.lamps = true, .lantern = true}), Method::path, "2");
-    ASSERT_EQ(moving.size(), 3u);
-    ASSERT_EQ(standing.size(), 1u);
-    EXPECT_TRUE(moving[2].pixels == standing[0].pixels);
-    EXPECT_FALSE(moving[0].pixels == moving[2].pixels);
+    expect_last_frame_is_the_still_scenes(
+        moving_lamps, write_scene(m_dir, "all_still", {.lamps = true, .lantern = true}), Method::path);
 }
 
 // An emitting object that moves is lit apart as the lamps are: with the lamps still, each photon
@@ -136,15 +144,8 @@ TEST_F(MovingLights, PathTracedFrameIsTheStillSceneBitForBit) {
 TEST_F(MovingLights, EmitterThatMovesGivesTheStillEmittersFrameBitForBit) {
     const std::string lantern_moves = write_scene(m_dir, "lantern_moves", {.lamps = true});
     const std::string all_still = write_scene(m_dir, "all_still", {.lamps = true, .lantern = true});
-    for (const Method method : {Method::localized, Method::photon, Method::frozen}) {
-        SCOPED_TRACE(method_info(method).name);
-        const std::vector<Image> moving = render(lantern_moves, method, "0-2");
-        const std::vector<Image> standing = render(all_still, method, "2");
-        ASSERT_EQ(moving.size(), 3u);
-        ASSERT_EQ(standing.size(), 1u);
-        EXPECT_TRUE(moving[2].pixels == standing[0].pixels);
-        EXPECT_FALSE(moving[0].pixels == moving[2].pixels);
-    }
+    for (const Method method : {Method::localized, Method::photon, Method::frozen})
+        expect_last_frame_is_the_still_scenes(lantern_moves, all_still, method);
 }
 
 // Lamps and suns that move are lit by photons of their own, traced every frame: the localized and
