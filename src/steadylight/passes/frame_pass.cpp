@@ -126,17 +126,17 @@ void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting) {
     // L_t there, the blend weight being 0, and its L_t layer the same product).
     reuse.look_up_again = [&reuse, &lighting](int, int, size_t pixel, PixelSums& sums) {
         const StaticFrame& base = reuse.base();
-        const PixelLookUps& look_ups = base.look_ups[pixel];
+        const KeptLookUps look_ups = base.look_ups(pixel);
         std::array<std::optional<Rgb>, PixelMemo::capacity> L_t;
         Rgb L_i;
-        for (size_t ray = pixel * size_t(base.samples); ray < (pixel + 1) * size_t(base.samples); ++ray) {
-            const uint8_t i = base.ray_look_up[ray];
-            if (i == StaticFrame::no_look_up) continue;
-            std::optional<Rgb>& E = L_t[i];
+        for (int ray = 0; ray < base.samples; ++ray) {
+            const int i = look_ups.look_up(ray);
+            if (i == KeptLookUps::none) continue;
+            std::optional<Rgb>& E = L_t[size_t(i)];
             // Covered, as in the static frame: the corrected records are the static ones, moved nowhere.
-            if (!E) E = lighting.corrected_cache.interpolate(look_ups.p[i], look_ups.n[i]);
-            if (!E) E = lighting.corrected_cache.interpolate(look_ups.p[i], look_ups.n[i], 2).value();
-            L_i += base.ray_albedo[ray] * *E;
+            if (!E) E = lighting.corrected_cache.interpolate(look_ups.point(i), look_ups.normal(i));
+            if (!E) E = lighting.corrected_cache.interpolate(look_ups.point(i), look_ups.normal(i), 2).value();
+            L_i += look_ups.albedo(ray) * *E;
         }
         sums.indirect = sums.extra[L_t_slot] = L_i;
     };
@@ -183,8 +183,9 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
 
 }  // namespace
 
-StaticFrame make_static_frame(const FrameContext& context, const StaticSolution& solution,
-                              const PhotonMappingSettings& photon, const LocalizedSettings& localized) {
+std::optional<StaticFrame> make_static_frame(const FrameContext& context, const StaticSolution& solution,
+                                             const PhotonMappingSettings& photon, const LocalizedSettings& localized,
+                                             double max_bytes) {
     SL_CHECK(solution.photon_paths);
     const StaticPhotonPaths& paths = *solution.photon_paths;
     SL_CHECK(paths.irradiance);
@@ -194,11 +195,13 @@ StaticFrame make_static_frame(const FrameContext& context, const StaticSolution&
     const IrradianceCache no_dynamic_cache(photon.cache);
     const InfluenceMap no_influence;
     StaticFrame out;
-    StaticFrameMaker maker(out, context.frame, photon.shading.samples_per_pixel);
+    StaticFrameMaker maker(out, context.frame, photon.shading.samples_per_pixel, max_bytes);
     FrameStats stats;
     shade_localized(
         context, {solution.cache, no_dynamic_cache, corrected_cache, no_influence, irradiance, paths.caustic.photons},
         photon, localized, Visibility::static_only, &maker, stats);
+    if (!maker.fits()) return std::nullopt;
+    maker.finish_frame();
     return out;
 }
 
@@ -280,22 +283,26 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayT
             return nullptr;
         }
     const Camera& camera = scene.evaluate(segment.first).camera;
-    const int samples = photon.shading.samples_per_pixel;
-    const double bytes = double(camera.width) * double(camera.height) * double(StaticFrame::bytes_per_pixel(samples));
-    if (!static_frame_fits(camera.width, camera.height, samples, available_bytes)) {
+    const double pixels = double(camera.width) * double(camera.height);
+    const double max_bytes = static_frame_memory_share * available_bytes;
+    const auto off = [&](double bytes, const char* what) {
         spdlog::info(
-            "pixel reuse: off: the static frame would need {:.0f} MB, more than {:.0f}% of the {:.0f} MB "
+            "pixel reuse: off: the static frame would need {} {:.0f} MB, more than {:.0f}% of the {:.0f} MB "
             "available; every pixel is shaded in every frame",
-            bytes / 1e6, static_frame_memory_share * 100, available_bytes / 1e6);
+            what, bytes / 1e6, static_frame_memory_share * 100, available_bytes / 1e6);
         return nullptr;
-    }
+    };
+    const double least = pixels * double(StaticFrame::fixed_bytes_per_pixel());
+    if (least > max_bytes) return off(least, "at least");
     const Stopwatch time;
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PlacedFrame view(scene, tracer, bsdfs, segment.first);
-    auto frame = std::make_shared<const StaticFrame>(make_static_frame(view.context(), solution, photon, localized));
-    spdlog::info("static frame: {}x{} pixels, {:.1f} MB, shaded in {:.2f} s", camera.width, camera.height, bytes / 1e6,
-                 time.elapsed_s());
-    return frame;
+    std::optional<StaticFrame> made = make_static_frame(view.context(), solution, photon, localized, max_bytes);
+    if (!made) return off(max_bytes, "more than");
+    const double bytes = double(made->bytes());
+    spdlog::info("static frame: {}x{} pixels, {:.1f} MB ({:.0f} bytes a pixel), shaded in {:.2f} s", camera.width,
+                 camera.height, bytes / 1e6, bytes / pixels, time.elapsed_s());
+    return std::make_shared<const StaticFrame>(std::move(*made));
 }
 
 LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution& solution,

@@ -39,13 +39,16 @@ struct LocalizedFrame {
 };
 
 /// The static frame of pixel reuse (pixel_reuse.h): `context`'s view shaded with the dynamic
-/// objects removed, from the segment's static cache and photon paths (which must be there).
-StaticFrame make_static_frame(const FrameContext& context, const StaticSolution& solution,
-                              const PhotonMappingSettings& photon, const LocalizedSettings& localized);
+/// objects removed, from the segment's static cache and photon paths (which must be there); none
+/// when it would take more than `max_bytes`.
+std::optional<StaticFrame> make_static_frame(const FrameContext& context, const StaticSolution& solution,
+                                             const PhotonMappingSettings& photon, const LocalizedSettings& localized,
+                                             double max_bytes);
 
 /// The static frame of a segment whose camera stands still, when it fits in
-/// static_frame_memory_share of `available_bytes` (pixel_reuse.h); else null, with a log line
-/// saying why (frames then shade every pixel).
+/// static_frame_memory_share of `available_bytes` (pixel_reuse.h): refused up front when the
+/// part every pixel takes would not, and dropped when it grows past it while it is made; else
+/// null, with a log line saying why (frames then shade every pixel).
 std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayTracer& tracer, const Segment& segment,
                                                         const StaticSolution& solution,
                                                         const PhotonMappingSettings& photon,

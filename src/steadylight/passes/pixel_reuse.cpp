@@ -1,31 +1,165 @@
 #include "steadylight/passes/pixel_reuse.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "steadylight/base/parallel.h"
 
 namespace steadylight {
 
-StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples) : m_out(out) {
+namespace {
+
+/// Sum `i` of a pixel's sums, in StaticFrame's order: direct, indirect, caustic, specular, extras.
+Rgb& sum_at(PixelSums& sums, int i) {
+    switch (i) {
+        case 0:
+            return sums.direct;
+        case 1:
+            return sums.indirect;
+        case 2:
+            return sums.caustic;
+        case 3:
+            return sums.specular;
+        default:
+            return sums.extra[size_t(i - 4)];
+    }
+}
+
+template <class T>
+T read(const std::byte* at) {
+    T value;
+    std::memcpy(&value, at, sizeof(T));
+    return value;
+}
+
+template <class T>
+void append(std::vector<std::byte>& bytes, const T& value) {
+    const size_t at = bytes.size();
+    bytes.resize(at + sizeof(T));
+    std::memcpy(bytes.data() + at, &value, sizeof(T));
+}
+
+bool same_bits(Rgb a, Rgb b) { return std::memcmp(&a, &b, sizeof(Rgb)) == 0; }
+
+constexpr size_t look_up_bytes = 2 * sizeof(Vec3);  // a point and a normal
+
+}  // namespace
+
+Vec3 KeptLookUps::point(int look_up) const { return read<Vec3>(m_look_ups + size_t(look_up) * look_up_bytes); }
+
+Vec3 KeptLookUps::normal(int look_up) const {
+    return read<Vec3>(m_look_ups + size_t(look_up) * look_up_bytes + sizeof(Vec3));
+}
+
+Rgb KeptLookUps::albedo(int ray) const { return read<Rgb>(m_albedos + size_t(m_rays[ray] >> 2) * sizeof(Rgb)); }
+
+size_t StaticFrame::tile_of(size_t pixel) const {
+    const size_t x = pixel % size_t(width), y = pixel / size_t(width);
+    return y / shading_tile_size * size_t(m_tiles_x) + x / shading_tile_size;
+}
+
+PixelSums StaticFrame::sums(size_t pixel) const {
+    const KeptPixel& kept = m_pixels[pixel];
+    const std::byte* at = values_of(pixel);
+    PixelSums sums;
+    for (int i = 0; i < kept_sums; ++i)
+        if (((kept.kept >> (2 * i)) & 3) == stored) sum_at(sums, i) = read<Rgb>(at), at += sizeof(Rgb);
+    for (int i = 0; i < kept_sums; ++i)
+        if (((kept.kept >> (2 * i)) & 3) == same_as_indirect) sum_at(sums, i) = sums.indirect;
+    const uint32_t covered = (kept.kept >> (2 * kept_sums)) & 3;
+    sums.covered = covered == stored ? read<float>(at) : covered == every_ray ? float(samples) : 0.0f;
+    return sums;
+}
+
+KeptLookUps StaticFrame::look_ups(size_t pixel) const {
+    const KeptPixel& kept = m_pixels[pixel];
+    if (kept.look_ups == 0) return {nullptr, nullptr, nullptr};
+    const std::byte* at = values_of(pixel);
+    for (int i = 0; i < kept_sums; ++i) at += ((kept.kept >> (2 * i)) & 3) == stored ? sizeof(Rgb) : 0;
+    at += ((kept.kept >> (2 * kept_sums)) & 3) == stored ? sizeof(float) : 0;
+    const std::byte* albedos = at + kept.look_ups * look_up_bytes;
+    return {at, albedos, reinterpret_cast<const uint8_t*>(albedos + kept.albedos * sizeof(Rgb))};
+}
+
+size_t StaticFrame::bytes() const {
+    size_t bytes = m_pixels.capacity() * sizeof(KeptPixel) + m_tiles.capacity() * sizeof(m_tiles[0]);
+    for (const std::vector<std::byte>& tile : m_tiles) bytes += tile.capacity();
+    return bytes;
+}
+
+StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples, double max_bytes)
+    : m_out(out), m_max_bytes(max_bytes) {
     const Camera& camera = frame.camera;
-    const size_t pixels = size_t(camera.width) * size_t(camera.height);
-    out = {frame,
-           camera.width,
-           camera.height,
-           samples,
-           std::vector<PixelSums>(pixels),
-           std::vector<PixelTrace>(pixels),
-           std::vector<PixelLookUps>(pixels),
-           std::vector<uint8_t>(pixels * size_t(samples), StaticFrame::no_look_up),
-           std::vector<Rgb>(pixels * size_t(samples))};
+    out.made_at = frame;
+    out.width = camera.width, out.height = camera.height, out.samples = samples;
+    out.m_pixels.assign(size_t(camera.width) * size_t(camera.height), {});
+    out.m_tiles_x = (camera.width + shading_tile_size - 1) / shading_tile_size;
+    const size_t tiles = size_t(out.m_tiles_x) * size_t((camera.height + shading_tile_size - 1) / shading_tile_size);
+    out.m_tiles.assign(tiles, {});
+    m_pending.resize(tiles);
+    m_bytes = out.m_pixels.size() * sizeof(StaticFrame::KeptPixel);
+}
+
+PixelSource::Shading StaticFrameMaker::begin(int, int, size_t pixel, PixelSums&) {
+    Pending& pending = m_pending[m_out.tile_of(pixel)];
+    pending.look_ups = 0;
+    pending.albedos.clear();
+    pending.rays.clear();
+    return Shading::all;
 }
 
 void StaticFrameMaker::add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) {
-    const size_t ray = pixel * size_t(m_out.samples) + size_t(sample);
-    m_out.ray_look_up[ray] = uint8_t(entry);
-    m_out.ray_albedo[ray] = albedo_over_pi;
-    m_out.look_ups[pixel].p[size_t(entry)] = p;
-    m_out.look_ups[pixel].n[size_t(entry)] = n;
+    Pending& pending = m_pending[m_out.tile_of(pixel)];
+    if (pending.rays.empty()) pending.rays.assign(size_t(m_out.samples), KeptLookUps::no_ray);
+    pending.p[size_t(entry)] = p, pending.n[size_t(entry)] = n;
+    pending.look_ups = std::max(pending.look_ups, entry + 1);
+    const auto known = std::find_if(pending.albedos.begin(), pending.albedos.end(),
+                                    [&](Rgb a) { return same_bits(a, albedo_over_pi); });
+    const size_t albedo = size_t(known - pending.albedos.begin());
+    if (known == pending.albedos.end()) {
+        // A textured surface can give every camera ray an albedo of its own: past this many the
+        // pixel's look-ups are not kept (it is shaded again when its records change).
+        if (albedo == KeptLookUps::max_albedos) {
+            add_flags(pixel, PixelRecorder::unkept);
+            return;
+        }
+        pending.albedos.push_back(albedo_over_pi);
+    }
+    pending.rays[size_t(sample)] = uint8_t(entry | int(albedo << 2));
+}
+
+void StaticFrameMaker::finish(size_t pixel, PixelSums& sums) {
+    if (m_too_big) return;
+    StaticFrame::KeptPixel& kept = m_out.m_pixels[pixel];
+    std::vector<std::byte>& bytes = m_out.m_tiles[m_out.tile_of(pixel)];
+    kept.at = uint32_t(bytes.size());
+    for (int i = 0; i < StaticFrame::kept_sums; ++i) {
+        const Rgb value = sum_at(sums, i);
+        const uint32_t how = same_bits(value, Rgb{})                     ? StaticFrame::zero
+                             : i != 1 && same_bits(value, sums.indirect) ? StaticFrame::same_as_indirect
+                                                                         : StaticFrame::stored;
+        kept.kept |= how << (2 * i);
+        if (how == StaticFrame::stored) append(bytes, value);
+    }
+    const uint32_t covered = sums.covered == 0                      ? StaticFrame::zero
+                             : sums.covered == float(m_out.samples) ? StaticFrame::every_ray
+                                                                    : StaticFrame::stored;
+    kept.kept |= covered << (2 * StaticFrame::kept_sums);
+    if (covered == StaticFrame::stored) append(bytes, sums.covered);
+    const Pending& pending = m_pending[m_out.tile_of(pixel)];
+    if (!(kept.trace.flags & PixelRecorder::unkept) && pending.look_ups > 0) {
+        kept.look_ups = uint8_t(pending.look_ups), kept.albedos = uint8_t(pending.albedos.size());
+        for (int i = 0; i < pending.look_ups; ++i)
+            append(bytes, pending.p[size_t(i)]), append(bytes, pending.n[size_t(i)]);
+        for (const Rgb albedo : pending.albedos) append(bytes, albedo);
+        for (const uint8_t ray : pending.rays) append(bytes, ray);
+    }
+    if (double(m_bytes += bytes.size() - kept.at) > m_max_bytes) m_too_big = true;
+}
+
+void StaticFrameMaker::finish_frame() {
+    for (std::vector<std::byte>& tile : m_out.m_tiles) tile.shrink_to_fit();
 }
 
 void PixelTrace::add_distant_direction(Vec3 w) {
@@ -67,14 +201,14 @@ PixelSource::Shading PixelReuse::begin(int x, int y, size_t pixel, PixelSums& su
     const PixelWork work = m_work[pixel];
     if (work == PixelWork::redo) return Shading::all;
     if (work == PixelWork::redo_but_direct) return Shading::all_but_direct;
-    sums = m_base.sums[pixel];
-    if (reused_layers) reused_layers(x, y, m_base.traces[pixel], sums);
+    sums = m_base.sums(pixel);
+    if (reused_layers) reused_layers(x, y, m_base.trace(pixel), sums);
     if (work == PixelWork::look_up_again) look_up_again(x, y, pixel, sums);
     return Shading::none;
 }
 
 void PixelReuse::finish(size_t pixel, PixelSums& sums) {
-    if (m_work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.sums[pixel].direct;
+    if (m_work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.sums(pixel).direct;
 }
 
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
@@ -118,7 +252,7 @@ void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, s
 }
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {
-    const size_t pixels = base.traces.size();
+    const size_t pixels = base.pixel_count();
     PixelPlan plan;
     plan.work.resize(pixels);
     plan.changed.assign(pixels, 0);
@@ -126,7 +260,7 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
     for (const BoundingSphere& object : changes.dynamic) mark_sphere_on_screen(camera, object, seen, Outline::round);
     parallel_for_chunks(long(pixels), 4096, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
-            const PixelTrace& trace = base.traces[size_t(i)];
+            const PixelTrace& trace = base.trace(size_t(i));
             const BoundingSphere points = BoundingSphere::of_box(trace.lo, trace.hi);
             // Shadow rays start a ray offset off their surface; a millionth of the scene's size is more.
             const float slack = points.empty() ? 0 : 1e-5f * (1 + length(points.center) + points.radius);

@@ -20,6 +20,8 @@
 #pragma once
 
 #include <array>
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -45,61 +47,116 @@ struct PixelTrace {
     bool reached_distant_light() const { return to_distant_lo[0] <= to_distant_hi[0]; }
 };
 
-/// Where a pixel's camera rays looked up their indirect light (PixelMemo's entries), so that a
-/// frame can look it up again there without tracing them.
-struct PixelLookUps {
-    std::array<Vec3, PixelMemo::capacity> p, n;
+/// Where a kept pixel's camera rays looked up their indirect light: the pixel memo's look-ups
+/// (points and normals) and, per camera ray, which one and the albedo that multiplied it. A view
+/// into the static frame's bytes.
+class KeptLookUps {
+public:
+    static constexpr int none = -1;
+
+    KeptLookUps(const std::byte* look_ups, const std::byte* albedos, const uint8_t* rays)
+        : m_look_ups(look_ups), m_albedos(albedos), m_rays(rays) {}
+    /// The look-up camera ray `ray`'s indirect light came from, or none.
+    int look_up(int ray) const { return m_rays && m_rays[ray] != no_ray ? m_rays[ray] & 3 : none; }
+    Vec3 point(int look_up) const;
+    Vec3 normal(int look_up) const;
+    /// The albedo / pi that multiplied camera ray `ray`'s indirect light (one with a look-up).
+    Rgb albedo(int ray) const;
+
+    /// A camera ray's byte: its look-up in the low 2 bits, the index of its albedo above them.
+    static constexpr uint8_t no_ray = 255;
+    static constexpr int max_albedos = 32;
+
+private:
+    const std::byte* m_look_ups;
+    const std::byte* m_albedos;
+    const uint8_t* m_rays;  // null: no camera ray's look-up was kept
 };
 
 /// The static frame: every pixel's sums and trace, shaded with the dynamic objects removed, and
-/// where its camera rays looked up indirect light.
-struct StaticFrame {
-    static constexpr uint8_t no_look_up = 255;
-
+/// where its camera rays looked up indirect light. Kept packed, since it is held for a whole
+/// segment at production sizes: per pixel a KeptPixel (its trace, and how its values are kept),
+/// then its values in the bytes of its shading tile (each tile is shaded by one thread at a
+/// time, so a tile's bytes grow from one thread): of its sums only those that are not zero and
+/// not equal to its indirect sum (the L_t layer mostly is), its look-ups, the distinct albedos
+/// its camera rays multiplied them by, and a byte per camera ray. A diffuse room's pixel keeps
+/// about 130 bytes at 16 camera rays (docs/notes/reuse-memory.md).
+class StaticFrame {
+public:
     FrameState made_at;                      // the view and lights it was shaded with
     int width = 0, height = 0, samples = 0;  // samples: camera rays per pixel
-    std::vector<PixelSums> sums;
-    std::vector<PixelTrace> traces;
-    std::vector<PixelLookUps> look_ups;
-    std::vector<uint8_t>
-        ray_look_up;              // per pixel and camera ray: the look-up its indirect light came from, or no_look_up
-    std::vector<Rgb> ray_albedo;  // per pixel and camera ray: the albedo / pi that multiplied it
 
-    static size_t bytes_per_pixel(int samples) {
-        return sizeof(PixelSums) + sizeof(PixelTrace) + sizeof(PixelLookUps) + size_t(samples) * (1 + sizeof(Rgb));
-    }
+    const PixelTrace& trace(size_t pixel) const { return m_pixels[pixel].trace; }
+    PixelSums sums(size_t pixel) const;
+    KeptLookUps look_ups(size_t pixel) const;
+    size_t pixel_count() const { return m_pixels.size(); }
+    /// The memory it holds.
+    size_t bytes() const;
+    /// The memory every pixel takes whatever it keeps (its KeptPixel).
+    static size_t fixed_bytes_per_pixel() { return sizeof(KeptPixel); }
+
+private:
+    friend class StaticFrameMaker;
+
+    /// How a sum is kept, 2 bits each in KeptPixel::kept; the coverage takes every_ray for 1.
+    enum Kept : uint32_t { zero = 0, same_as_indirect = 1, every_ray = 1, stored = 2 };
+    static constexpr int kept_sums = 4 + max_extra_layers;  // direct, indirect, caustic, specular, extras
+
+    struct KeptPixel {
+        PixelTrace trace;
+        uint32_t at = 0;    // where its values start in its tile's bytes
+        uint32_t kept = 0;  // Kept codes: sum i at bits 2i, covered after them
+        uint8_t look_ups = 0, albedos = 0;
+    };
+
+    size_t tile_of(size_t pixel) const;
+    const std::byte* values_of(size_t pixel) const { return m_tiles[tile_of(pixel)].data() + m_pixels[pixel].at; }
+
+    std::vector<KeptPixel> m_pixels;
+    std::vector<std::vector<std::byte>> m_tiles;  // per shading tile, row by row
+    int m_tiles_x = 0;
 };
 
 /// A static frame is kept only where it takes at most this share of the memory available (else
 /// every frame shades every pixel).
 constexpr double static_frame_memory_share = 0.25;
 
-/// Whether a static frame of `width` x `height` pixels at `samples` camera rays a pixel fits in
-/// that share of `available_bytes`.
-inline bool static_frame_fits(int width, int height, int samples, double available_bytes) {
-    return double(width) * double(height) * double(StaticFrame::bytes_per_pixel(samples)) <=
-           static_frame_memory_share * available_bytes;
-}
-
 /// The pixel source that makes a static frame: every pixel shaded whole, its sums and what its
-/// shading went through kept.
+/// shading went through kept. When the frame's bytes grow past `max_bytes` it stops keeping
+/// values, and fits() says so (the frame must then not be used). Its tiles' bytes may reserve up
+/// to as much again while it is made, until finish_frame().
 class StaticFrameMaker : public PixelSource, public PixelRecorder {
 public:
     /// Fills `out`, made for `frame`'s camera at `samples` camera rays a pixel.
-    StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples);
+    StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples, double max_bytes);
+    bool fits() const { return !m_too_big; }
+    /// Gives back what the tiles' bytes reserved beyond their size; call once every pixel is shaded.
+    void finish_frame();
 
-    Shading begin(int, int, size_t, PixelSums&) override { return Shading::all; }
-    void finish(size_t pixel, PixelSums& sums) override { m_out.sums[pixel] = sums; }
+    Shading begin(int, int, size_t pixel, PixelSums&) override;
+    void finish(size_t pixel, PixelSums& sums) override;
     PixelRecorder* recorder() override { return this; }
 
-    void add_point(size_t pixel, Vec3 p) override { m_out.traces[pixel].add_point(p); }
-    void add_distant_direction(size_t pixel, Vec3 w) override { m_out.traces[pixel].add_distant_direction(w); }
-    void add_flags(size_t pixel, uint8_t flags) override { m_out.traces[pixel].flags |= flags; }
-    void add_surface_ray(size_t pixel) override { ++m_out.traces[pixel].surface_rays; }
+    void add_point(size_t pixel, Vec3 p) override { m_out.m_pixels[pixel].trace.add_point(p); }
+    void add_distant_direction(size_t pixel, Vec3 w) override { m_out.m_pixels[pixel].trace.add_distant_direction(w); }
+    void add_flags(size_t pixel, uint8_t flags) override { m_out.m_pixels[pixel].trace.flags |= flags; }
+    void add_surface_ray(size_t pixel) override { ++m_out.m_pixels[pixel].trace.surface_rays; }
     void add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) override;
 
 private:
+    /// The look-ups of the pixel a tile is shading, until finish() packs them.
+    struct Pending {
+        std::array<Vec3, PixelMemo::capacity> p, n;
+        int look_ups = 0;
+        std::vector<Rgb> albedos;
+        std::vector<uint8_t> rays;
+    };
+
     StaticFrame& m_out;
+    std::vector<Pending> m_pending;  // per tile
+    double m_max_bytes;
+    std::atomic<size_t> m_bytes = 0;
+    std::atomic<bool> m_too_big = false;
 };
 
 /// What a frame does with a pixel when it has a static frame.

@@ -3,6 +3,8 @@
 // layer for layer, on the scenes whose camera stands still.
 #include "steadylight/passes/pixel_reuse.h"
 
+#include <cstring>
+
 #include <gtest/gtest.h>
 
 #include "steadylight/base/rng.h"
@@ -130,7 +132,7 @@ StaticSolution solution_with_static_frame(const Scene& scene, RayTracer& tracer,
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PlacedFrame placed(scene, tracer, bsdfs, view);
     solution.static_frame =
-        std::make_shared<const StaticFrame>(make_static_frame(placed.context(), solution, settings, {}));
+        std::make_shared<const StaticFrame>(make_static_frame(placed.context(), solution, settings, {}, 1e12).value());
     return solution;
 }
 
@@ -198,8 +200,117 @@ TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, PixelReuseOnScene,
                          ::testing::Values("ball", "table", "corridor", "glass_move", "mirror_room", "blender_glass",
-                                           "daylit_room"),
+                                           "blender_textured", "daylit_room"),
                          [](const auto& param_info) { return param_info.param; });
+
+// The packing alone: every sum, look-up and albedo comes back bit for bit, in pixels of two
+// tiles shaded side by side; a pixel whose camera rays bring more distinct albedos than
+// KeptLookUps::max_albedos (a fine texture at many camera rays) keeps no look-up and is marked
+// unkept, so that it is shaded again rather than looked up again.
+TEST(StaticFrame, KeepsEverySumLookUpAndAlbedoOfAPixel) {
+    FrameState frame;
+    frame.camera.width = shading_tile_size + 5, frame.camera.height = 3;
+    const int samples = KeptLookUps::max_albedos + 8;
+    StaticFrame kept;
+    StaticFrameMaker maker(kept, frame, samples, 1e9);
+    const size_t few = 2, many = shading_tile_size + 1;  // in two tiles
+    PixelSums sums[2];
+    for (const size_t pixel : {few, many}) {
+        PixelSums& s = sums[pixel == many];
+        PixelSums unused;
+        maker.begin(int(pixel), 0, pixel, unused);
+        s.direct = {0.5f, -0.0f, 3};
+        s.indirect = {1, 2, float(pixel)};
+        s.specular = {0, 0, 1e-30f};
+        s.extra[1] = s.indirect;
+        s.extra[3] = {7, 8, 9};
+        s.covered = pixel == few ? float(samples) : 3.0f;
+        for (int ray = 0; ray < samples; ++ray) {
+            if (ray == 5) continue;  // a ray with no look-up (it met no diffuse surface)
+            const int look_up = ray % 2;
+            const float albedo = pixel == few ? float(ray % 3) : float(ray);
+            maker.add_look_up(pixel, ray, look_up, Vec3{1, 2, float(look_up)}, Vec3{0, 0, 1}, Rgb{albedo, 0.25f, 1});
+        }
+        maker.finish(pixel, s);
+    }
+    maker.finish_frame();
+    ASSERT_TRUE(maker.fits());
+    for (const size_t pixel : {few, many}) {
+        const PixelSums& s = sums[pixel == many];
+        const PixelSums back = kept.sums(pixel);
+        const auto same = [](Rgb a, Rgb b) { return std::memcmp(&a, &b, sizeof(Rgb)) == 0; };
+        EXPECT_TRUE(same(back.direct, s.direct) && same(back.indirect, s.indirect) && same(back.caustic, s.caustic) &&
+                    same(back.specular, s.specular))
+            << pixel;
+        for (int e = 0; e < max_extra_layers; ++e) EXPECT_TRUE(same(back.extra[size_t(e)], s.extra[size_t(e)])) << e;
+        EXPECT_EQ(back.covered, s.covered);
+    }
+    const KeptLookUps few_look_ups = kept.look_ups(few);
+    EXPECT_FALSE(kept.trace(few).flags & PixelRecorder::unkept);
+    for (int ray = 0; ray < samples; ++ray) {
+        if (ray == 5) {
+            EXPECT_EQ(few_look_ups.look_up(ray), KeptLookUps::none);
+            continue;
+        }
+        ASSERT_EQ(few_look_ups.look_up(ray), ray % 2);
+        EXPECT_EQ(few_look_ups.point(ray % 2), (Vec3{1, 2, float(ray % 2)}));
+        EXPECT_EQ(few_look_ups.normal(ray % 2), (Vec3{0, 0, 1}));
+        EXPECT_EQ(few_look_ups.albedo(ray), (Rgb{float(ray % 3), 0.25f, 1}));
+    }
+    EXPECT_TRUE(kept.trace(many).flags & PixelRecorder::unkept);
+    EXPECT_EQ(kept.look_ups(many).look_up(0), KeptLookUps::none);
+}
+
+// A textured surface gives each camera ray an albedo of its own: at more camera rays than
+// KeptLookUps::max_albedos, pixels on blender_textured's textures are shaded again when their
+// records change, still the frame shaded whole, bit for bit.
+TEST(PixelReuse, PixelsWithMoreAlbedosThanKeptAreShadedAgain) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/blender_textured.json"));
+    scene.set_resolution(16, 12);
+    PhotonMappingSettings settings = small_settings();
+    settings.shading.samples_per_pixel = KeptLookUps::max_albedos + 8;
+    RayTracer tracer(scene, scene.evaluate(0));
+    StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PlacedFrame placed(scene, tracer, bsdfs, scene.frame_count() / 2);
+    const LocalizedFrame reused = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+    solution.static_frame.reset();
+    const LocalizedFrame whole = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+    expect_same_layers(reused, whole, "blender_textured");
+}
+
+// What a still camera keeps between frames, packed: a diffuse room's pixel at the default 16
+// camera rays in at most 150 bytes (its trace, three sums, a look-up, an albedo and a byte per
+// camera ray), against 440 when every sum and a look-up slot per camera ray were kept whole.
+TEST(PixelReuse, StaticFrameKeepsADiffuseRoomsPixelInAtMost150Bytes) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
+    scene.set_resolution(32, 24);
+    PhotonMappingSettings settings = small_settings();
+    settings.shading.samples_per_pixel = 16;
+    RayTracer tracer(scene, scene.evaluate(0));
+    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    EXPECT_LE(double(solution.static_frame->bytes()) / (32 * 24), 150);
+}
+
+// Where the static frame would take more than its share of the memory available, frames shade
+// every pixel: it is refused up front when the part every pixel takes would not fit, and
+// dropped when it grows past its share while it is made.
+TEST(PixelReuse, AStaticFrameThatWouldNotFitIsNotKept) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
+    scene.set_resolution(32, 24);
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    const Segment segment{0, scene.frame_count() - 1};
+    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    const auto kept_with = [&](double share_bytes) {
+        return segment_static_frame(scene, tracer, segment, solution, settings, {},
+                                    share_bytes / static_frame_memory_share) != nullptr;
+    };
+    const double bytes = double(solution.static_frame->bytes());
+    EXPECT_TRUE(kept_with(bytes * 1.1));
+    EXPECT_FALSE(kept_with(bytes * 0.9));
+    EXPECT_FALSE(kept_with(32 * 24 * double(StaticFrame::fixed_bytes_per_pixel()) * 0.9));
+}
 
 TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {
     const Scene scene(testing::two_rooms_one_moving_ball());

@@ -13,7 +13,6 @@
 namespace steadylight {
 namespace {
 
-constexpr int tile_size = 16;
 /// Delta bounces up to this depth follow every lobe (glass: reflection and refraction).
 constexpr int max_split_depth = 2;
 /// Bounces followed from a glossy surface the camera sees directly.
@@ -345,7 +344,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
     const Shader shader(context, settings, caustic, indirect, reflected, visibility);
     PixelRecorder* const recorder = source ? source->recorder() : nullptr;
     const float inv_n = 1.0f / float(n);
-    parallel_for_tiles(camera.width, camera.height, tile_size, [&](int x0, int y0, int x1, int y1) {
+    parallel_for_tiles(camera.width, camera.height, shading_tile_size, [&](int x0, int y0, int x1, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
                 const size_t i = size_t(y) * size_t(camera.width) + size_t(x);

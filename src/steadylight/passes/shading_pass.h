@@ -32,6 +32,10 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(ShadingSettings, samples_per_pix
                                                 caustic_estimate)
 void validate(const ShadingSettings& settings, const std::string& where);
 
+/// The side of the square tiles shade_frame() shades, each on one thread at a time, row by row
+/// from the top-left one.
+constexpr int shading_tile_size = 16;
+
 /// Up to five layers of the method's own (influence, L_y, L_t, ...), one value per camera ray.
 constexpr int max_extra_layers = 5;
 using ExtraLayers = std::array<Rgb, max_extra_layers>;
