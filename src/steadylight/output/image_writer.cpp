@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -29,22 +30,15 @@ half to_finite_half(float value) {
     return std::isnan(value) ? half(0.0f) : half(std::clamp(value, -max_half, max_half));
 }
 
-/// One channel's pixels, converted to the file's pixel type and kept alive until written.
-struct ChannelData {
-    std::vector<half> halves;
-    std::vector<float> floats;
+/// Lines a half EXR is converted and written in at a time (a multiple of ZIP's 16-line blocks).
+constexpr int half_lines = 64;
 
-    ChannelData(const Image& image, int component, ExrPixelType type) {
-        for (const Rgb& pixel : image.pixels) {
-            if (type == ExrPixelType::half)
-                halves.push_back(to_finite_half(pixel[component]));
-            else
-                floats.push_back(pixel[component]);
-        }
-    }
-    char* base() {
-        return halves.empty() ? reinterpret_cast<char*>(floats.data()) : reinterpret_cast<char*>(halves.data());
-    }
+/// One channel of the file: where its floats are in an image, and for a half file the halves of
+/// the lines being written.
+struct Channel {
+    std::string name;
+    const float* floats;  // its value at pixel i is floats[3 i]
+    std::vector<half> halves;
 };
 
 Imf::PixelType imf_type(ExrPixelType type) { return type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT; }
@@ -60,16 +54,14 @@ ExrPixelType parse_exr_pixel_type(const std::string& name, const std::string& op
 void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, ExrPixelType type) {
     write_file_atomically(path, [&](const std::string& file) {
         const Image& first = *layers.front().image;
-        Imf::Header header(first.width, first.height);
+        const int width = first.width, height = first.height;
+        Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
-        Imf::FrameBuffer buffer;
-        std::vector<ChannelData> channels;
-        channels.reserve(layers.size() * 3);
-        const size_t pixel_size = type == ExrPixelType::half ? sizeof(half) : sizeof(float);
+        static_assert(sizeof(Rgb) == 3 * sizeof(float));  // r, g, b side by side
+        std::vector<Channel> channels;
         const auto add_channel = [&](const std::string& name, const Image& image, int component) {
-            ChannelData& data = channels.emplace_back(image, component, type);
             header.channels().insert(name, Imf::Channel(imf_type(type)));
-            buffer.insert(name, Imf::Slice(imf_type(type), data.base(), pixel_size, pixel_size * size_t(first.width)));
+            channels.push_back({name, reinterpret_cast<const float*>(image.pixels.data()) + component, {}});
         };
         for (const ExrLayer& layer : layers) {
             for (const auto& [name, component] : exr_layer_channels(layer.name, layer.scalar, layer.scalar_channel))
@@ -79,8 +71,35 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
         // OpenEXR compresses blocks of scanlines on its own threads, one per core; the bytes
         // written do not depend on how many.
         Imf::OutputFile out(file.c_str(), header, int(std::max(1u, std::thread::hardware_concurrency())));
-        out.setFrameBuffer(buffer);
-        out.writePixels(first.height);
+        const size_t line = size_t(width);
+        if (type == ExrPixelType::float32) {
+            // Straight from the images' floats.
+            Imf::FrameBuffer buffer;
+            for (const Channel& channel : channels)
+                buffer.insert(channel.name,
+                              Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(channel.floats)),
+                                         sizeof(Rgb), sizeof(Rgb) * line));
+            out.setFrameBuffer(buffer);
+            out.writePixels(height);
+            return;
+        }
+        // Halves are converted a few lines at a time, so that a frame's dozen layers are never
+        // copied whole while it is written. A slice addresses lines by their number in the
+        // image: each batch's buffer is placed where its first line would be.
+        for (Channel& channel : channels) channel.halves.resize(half_lines * line);
+        for (int y0 = 0; y0 < height; y0 += half_lines) {
+            const int lines = std::min(half_lines, height - y0);
+            Imf::FrameBuffer buffer;
+            for (Channel& channel : channels) {
+                for (size_t i = 0; i < size_t(lines) * line; ++i)
+                    channel.halves[i] = to_finite_half(channel.floats[3 * (size_t(y0) * line + i)]);
+                char* base =
+                    reinterpret_cast<char*>(channel.halves.data()) - ptrdiff_t(y0) * ptrdiff_t(sizeof(half) * line);
+                buffer.insert(channel.name, Imf::Slice(Imf::HALF, base, sizeof(half), sizeof(half) * line));
+            }
+            out.setFrameBuffer(buffer);
+            out.writePixels(lines);
+        }
     });
 }
 

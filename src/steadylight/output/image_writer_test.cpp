@@ -1,13 +1,16 @@
 #include "steadylight/output/image_writer.h"
 
+#include <Imath/half.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
 
 #include "steadylight/base/error.h"
+#include "steadylight/base/rng.h"
 #include "steadylight/output/frame_layers.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/scene/image_decoding.h"
@@ -149,6 +152,26 @@ TEST(ImageWriter, HalfExrValuesAreFinite) {
     const Image back = read_exr(path);
     EXPECT_EQ(back.at(0, 0), (Rgb{65504, -65504, 2}));
     EXPECT_EQ(back.at(1, 0), (Rgb{0, 1, 65504}));
+    fs::remove(path);
+}
+
+// A half channel whose values all fit is written from the image's floats by OpenEXR, one whose
+// values do not is clamped first: either way each value is the half nearest to it, as half()
+// rounds (to even), the tiny ones to denormals and zero too.
+TEST(ImageWriter, HalfExrValuesAreTheNearestHalves) {
+    const std::string path = (fs::temp_directory_path() / "steadylight_nearest.exr").string();
+    Image image(64, 150);  // lines in three batches of the writer's
+    Pcg32 rng(11);
+    for (Rgb& pixel : image.pixels) {
+        const auto value = [&] { return (rng.next_float() - 0.5f) * std::exp2(float(int(rng.next_u32() % 56) - 40)); };
+        pixel = {value(), value(), value()};
+    }
+    image.at(0, 0).b = 1e6f;  // the blue channel is clamped, the others are written as they are
+    write_exr(path, image);
+    const Image back = read_exr(path);
+    for (size_t i = 1; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(back.pixels[i][c], float(half(image.pixels[i][c]))) << i << " " << c;
+    EXPECT_EQ(back.at(0, 0).b, 65504);
     fs::remove(path);
 }
 
