@@ -50,6 +50,7 @@ PhotonFrame render_photon_mapped(const FrameContext& context, const PhotonMappin
     out.records = record_picture(context.frame.camera, cache.records());
     stats.irradiance_photons = irradiance_photons.computed();
     stats.irradiance_reused = irradiance_photons.reused();
+    stats.irradiance_from_lists = irradiance_photons.from_static_lists();
     stats.total_s = total.elapsed_s();
     return out;
 }

@@ -366,6 +366,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     take_localized_layers(shaded, context.frame.camera, static_cache, dynamic_cache, std::move(plan.changed), out);
     stats.irradiance_photons = traced.irradiance.computed();
     stats.irradiance_reused = traced.irradiance.reused();
+    stats.irradiance_from_lists = traced.irradiance.from_static_lists();
     stats.total_s = total.elapsed_s();
     return out;
 }

@@ -16,10 +16,15 @@ TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSetting
     ComposedPhotons composed = compose_photons(context, *paths);
     stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
     caustic_changes = {composed.caustic_traced, std::move(composed.changed_caustic_points)};
-    if (static_irradiance)
+    if (static_irradiance) {
+        std::vector<uint32_t> frame_ids(paths->global.photons.size(), PointIndex::removed);
+        for (size_t i = 0; i < composed.global_static_ids.size(); ++i)
+            if (composed.global_static_ids[i] != PointIndex::removed)
+                frame_ids[composed.global_static_ids[i]] = uint32_t(i);
         reuse = std::make_shared<const StaticIrradianceReuse>(
-            StaticIrradianceReuse{static_irradiance, std::move(composed.global_static_ids),
+            StaticIrradianceReuse{static_irradiance, std::move(composed.global_static_ids), std::move(frame_ids),
                                   PointIndex(composed.changed_global_points), context.tracer.dynamic_bounds()});
+    }
     return std::move(composed.maps);
 }
 

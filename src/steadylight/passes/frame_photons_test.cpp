@@ -1,5 +1,6 @@
 // The irradiance at a frame's photons taken from the static photons' where nothing changed
-// around them (StaticIrradianceReuse) against the same values estimated again over maps traced
+// around them (StaticIrradianceReuse), or estimated from the static photons' lists of
+// neighbours where something did, against the same values estimated again over maps traced
 // whole: bit for bit.
 #include "steadylight/passes/frame_photons.h"
 
@@ -35,9 +36,13 @@ TEST(FramePhotons, IrradianceTakenFromTheStaticPhotonsIsTheEstimatedOne) {
                 ASSERT_TRUE(a->r == b->r && a->g == b->g && a->b == b->b) << what << ", photon " << i;
             }
         }
-        // Both ways were taken: values reused, and values estimated again where photons changed.
+        // Every way was taken: values reused, and values estimated again where photons changed,
+        // most of them from the static photons' lists of neighbours.
         EXPECT_GT(composed.irradiance.reused(), long(composed.irradiance.size()) / 20) << what;
         EXPECT_GT(composed.irradiance.computed(), 0) << what;
+        if (frame != 0) {
+            EXPECT_GT(composed.irradiance.from_static_lists(), composed.irradiance.computed() / 2) << what;
+        }
         EXPECT_EQ(traced.irradiance.reused(), 0) << what;
     }
 }

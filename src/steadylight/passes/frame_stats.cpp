@@ -21,6 +21,7 @@ void for_each_json_field(Stats& s, Visit&& visit) {
     visit("/photons/dynamic_stored", s.dynamic_photons_stored);
     visit("/photons/irradiance_precomputed", s.irradiance_photons);
     visit("/photons/irradiance_reused", s.irradiance_reused);
+    visit("/photons/irradiance_from_lists", s.irradiance_from_lists);
     visit("/irradiance_records", s.irradiance_records);
     visit("/static_records", s.static_records);
     visit("/fallback_gathers", s.fallback_gathers);

@@ -59,6 +59,36 @@ void PhotonMap::k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour
                           p, k, max_radius * max_radius, out);
 }
 
+bool PhotonMap::k_nearest_from_base(Vec3 p, int k, float max_radius, const std::vector<Neighbour>& base_nearest,
+                                    int base_k, const std::vector<uint32_t>& base_to_here,
+                                    std::vector<Neighbour>& out) const {
+    if (!m_overlay || k <= 0) return false;
+    const float max_distance2 = max_radius * max_radius;
+    // Every base photon nearer than the list's last is in it; beyond it, only a full list
+    // leaves some out. Ids here keep the base's order, so the kept ones stay sorted.
+    const bool complete = int(base_nearest.size()) < base_k;
+    const float bound2 = complete ? max_distance2 : base_nearest.back().distance2;
+    thread_local std::vector<Neighbour> kept, added;
+    kept.clear();
+    for (const Neighbour& base : base_nearest)
+        if (const uint32_t id = base_to_here[base.index]; id != PointIndex::removed)
+            kept.push_back({id, PointIndex::distance2(m_photons[id].p, p)});
+    PointIndex::k_nearest({&m_overlay->added, m_overlay->added_ids.data()}, p, k, bound2, added);
+    // The first k of the two lists merged, as the search's heap orders them.
+    out.clear();
+    size_t a = 0, b = 0;
+    while (int(out.size()) < k && (a < kept.size() || b < added.size())) {
+        const bool from_kept = b == added.size() || (a < kept.size() && (kept[a].distance2 != added[b].distance2
+                                                                             ? kept[a].distance2 < added[b].distance2
+                                                                             : kept[a].index < added[b].index));
+        out.push_back(from_kept ? kept[a++] : added[b++]);
+    }
+    if (complete) return true;
+    // A base photon beyond the list could come before the k-th only at the list's last distance
+    // or further.
+    return int(out.size()) == k && out.back().distance2 < bound2;
+}
+
 void PhotonMap::within(Vec3 p, float radius, std::vector<Neighbour>& out) const {
     if (!m_index) return out.clear();
     if (!m_overlay) return m_index->within(p, radius * radius, out);
@@ -84,6 +114,12 @@ Rgb PhotonMap::estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySetti
                                               DiscProbes* probes) const {
     thread_local std::vector<Neighbour> neighbours;
     k_nearest(p, settings.k, settings.max_radius, neighbours);
+    return irradiance_on_surface(neighbours, p, n, settings, coverage, seed, radius, probes);
+}
+
+Rgb PhotonMap::irradiance_on_surface(const std::vector<Neighbour>& neighbours, Vec3 p, Vec3 n,
+                                     const DensitySettings& settings, const SurfaceCoverage& coverage, uint64_t seed,
+                                     float* radius, DiscProbes* probes) const {
     const float r2 = estimate_radius2(neighbours, settings), r = std::sqrt(r2);
     if (radius) *radius = r;
     if (probes) *probes = DiscProbes{};
@@ -139,6 +175,10 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
     }
     m_values.resize(m_photon.size());
     m_state = std::make_unique<std::atomic<uint8_t>[]>(m_photon.size());  // value-initialised: all empty
+    if (!m_reuse) {                                                       // values a frame's may read lists from
+        m_wider.resize(m_photon.size());
+        m_wider_state = std::make_unique<std::atomic<uint8_t>[]>(m_photon.size());
+    }
     m_index = PointIndex(positions);
 }
 
@@ -168,14 +208,48 @@ std::optional<IrradiancePhotons::Value> IrradiancePhotons::reused_value(uint32_t
     return value;
 }
 
+const std::vector<Neighbour>& IrradiancePhotons::wider_nearest(uint32_t i) const {
+    enum : uint8_t { empty, writing, ready };
+    SL_CHECK(m_wider_state);
+    if (m_wider_state[i].load(std::memory_order_acquire) == ready) return m_wider[i];
+    std::vector<Neighbour> nearest;
+    m_global->k_nearest(m_global->photons()[m_photon[i]].p, m_settings.k + wider_margin, m_settings.max_radius,
+                        nearest);
+    uint8_t expected = empty;
+    if (m_wider_state[i].compare_exchange_strong(expected, writing, std::memory_order_acquire)) {
+        m_wider[i] = std::move(nearest);
+        m_wider_state[i].store(ready, std::memory_order_release);
+        return m_wider[i];
+    }
+    while (m_wider_state[i].load(std::memory_order_acquire) != ready) std::this_thread::yield();
+    return m_wider[i];
+}
+
+bool IrradiancePhotons::nearest_from_static(uint32_t i, std::vector<Neighbour>& out) const {
+    if (!m_reuse) return false;
+    const uint32_t static_id = m_reuse->static_ids[m_photon[i]];
+    if (static_id == PointIndex::removed) return false;  // a new photon
+    const IrradiancePhotons& from = *m_reuse->values;
+    const std::optional<uint32_t> j = from.carrier(static_id);
+    SL_CHECK(j);  // the same bits, the same hash
+    return m_global->k_nearest_from_base(m_global->photons()[m_photon[i]].p, m_settings.k, m_settings.max_radius,
+                                         from.wider_nearest(*j), m_settings.k + wider_margin, m_reuse->frame_ids, out);
+}
+
 const IrradiancePhotons::Value& IrradiancePhotons::value(uint32_t i) const {
     enum : uint8_t { empty, writing, ready };
     if (m_state[i].load(std::memory_order_acquire) == ready) return m_values[i];
     // A pure function of the map: whichever thread computes it first, the value is the same.
     const std::optional<Value> reused = reused_value(i);
+    thread_local std::vector<Neighbour> nearest;
     Value value;
     if (reused) {
         value = *reused;
+    } else if (m_coverage && nearest_from_static(i, nearest)) {
+        const Photon& photon = m_global->photons()[m_photon[i]];
+        value.E = m_global->irradiance_on_surface(nearest, photon.p, photon.n, m_settings, m_coverage, m_hash[i],
+                                                  &value.radius, &value.probes);
+        m_from_static_lists.fetch_add(1, std::memory_order_relaxed);
     } else {
         const Photon& photon = m_global->photons()[m_photon[i]];
         value.E = m_coverage ? m_global->estimate_irradiance_on_surface(photon.p, photon.n, m_settings, m_coverage,

@@ -48,6 +48,14 @@ public:
 
     /// The k nearest photons to `p` within `max_radius`, nearest first.
     void k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out) const;
+    /// k_nearest of a composed map from what its base knows: `base_nearest`, the `base_k` nearest
+    /// base photons to p within max_radius (base ids, nearest first; all of them there when
+    /// fewer), and `base_to_here`, each base photon's id in this map or PointIndex::removed. It
+    /// searches only the added photons' small index and answers exactly as k_nearest does; false
+    /// (out unspecified) when the removed ones leave the list too short to tell, and for a map
+    /// that is not composed.
+    bool k_nearest_from_base(Vec3 p, int k, float max_radius, const std::vector<Neighbour>& base_nearest, int base_k,
+                             const std::vector<uint32_t>& base_to_here, std::vector<Neighbour>& out) const;
     /// Every photon within `radius` of `p`, in an order that depends on the map and `p` alone.
     void within(Vec3 p, float radius, std::vector<Neighbour>& out) const;
 
@@ -71,6 +79,10 @@ public:
     /// `probes` the disc's probes.
     Rgb estimate_irradiance_on_surface(Vec3 p, Vec3 n, const DensitySettings& settings, const SurfaceCoverage& coverage,
                                        uint64_t seed, float* radius = nullptr, DiscProbes* probes = nullptr) const;
+    /// The same from `nearest`, what k_nearest(p, settings.k, settings.max_radius) gives.
+    Rgb irradiance_on_surface(const std::vector<Neighbour>& nearest, Vec3 p, Vec3 n, const DensitySettings& settings,
+                              const SurfaceCoverage& coverage, uint64_t seed, float* radius = nullptr,
+                              DiscProbes* probes = nullptr) const;
 
     /// Photons indexed on their own (not composed over another map's index).
     size_t indexed_here() const;
@@ -104,6 +116,7 @@ class IrradiancePhotons;
 struct StaticIrradianceReuse {
     const IrradiancePhotons* values = nullptr;  // over the static map, probing the static scene
     std::vector<uint32_t> static_ids;     // per photon of the frame's map: its static photon, or PointIndex::removed
+    std::vector<uint32_t> frame_ids;      // per static photon: its photon in the frame's map, or PointIndex::removed
     PointIndex changed;                   // where static photons were removed and new ones added
     std::vector<BoundingSphere> dynamic;  // the dynamic objects
 };
@@ -117,7 +130,11 @@ struct StaticIrradianceReuse {
 /// first time a look-up needs it, then kept. A frame of the localized method looks up only near
 /// its few L_y records, so most values are never needed (compute_all() when they all are), and
 /// with `reuse` those nothing changed around are the static ones (about a fifth on BALL: the
-/// changed photons are whole path tails, spread over the room). Thread-safe; values do not depend on
+/// changed photons are whole path tails, spread over the room). Where something did change, the
+/// frame's estimate finds its k nearest photons from the static photon's list of a few more
+/// (wider_nearest, kept once found) and the frame's added photons, without searching the whole
+/// map, whenever the removed ones leave that list long enough to tell: the same neighbours, the
+/// same value. Thread-safe; values do not depend on
 /// which thread computes them first. The map must outlive this object and stay where it is, and
 /// so must what `coverage` and `reuse` refer to while values are computed.
 class IrradiancePhotons {
@@ -139,6 +156,12 @@ public:
     size_t size() const { return m_values.size(); }
     long computed() const { return m_computed.load(); }
     long reused() const { return m_reused.load(); }
+    /// Of the computed values, those whose neighbours came from the static photons' lists.
+    long from_static_lists() const { return m_from_static_lists.load(); }
+
+    /// Photons beyond the k nearest that a static photon's list keeps: as many as may be removed
+    /// around it in a frame before the list cannot tell the frame's k nearest.
+    static constexpr int wider_margin = 16;
 
     /// An estimate, its disc's radius (max_radius when fewer photons were found) and its probes.
     struct Value {
@@ -152,6 +175,12 @@ private:
     const Value& value(uint32_t i) const;
     /// Value i as `m_reuse` has it, if it may be taken from there.
     std::optional<Value> reused_value(uint32_t i) const;
+    /// The k + wider_margin nearest photons to value i's photon (a map of its own), found the
+    /// first time.
+    const std::vector<Neighbour>& wider_nearest(uint32_t i) const;
+    /// The k nearest photons to value i's photon from the static photon's wider_nearest list, if
+    /// they tell them.
+    bool nearest_from_static(uint32_t i, std::vector<Neighbour>& out) const;
     /// The value index of photon `photon`, if it carries one.
     std::optional<uint32_t> carrier(uint32_t photon) const;
 
@@ -163,8 +192,10 @@ private:
     std::vector<uint64_t> m_hash;    // and the photon's hash (the probes' turn)
     std::vector<Vec3> m_n;
     mutable std::vector<Value> m_values;
-    std::unique_ptr<std::atomic<uint8_t>[]> m_state;  // per value: empty, being written, ready
-    mutable std::atomic<long> m_computed = 0, m_reused = 0;
+    std::unique_ptr<std::atomic<uint8_t>[]> m_state;        // per value: empty, being written, ready
+    mutable std::vector<std::vector<Neighbour>> m_wider;    // per value, without `reuse`: wider_nearest
+    std::unique_ptr<std::atomic<uint8_t>[]> m_wider_state;  // and its state, as m_state
+    mutable std::atomic<long> m_computed = 0, m_reused = 0, m_from_static_lists = 0;
     PointIndex m_index;
 };
 

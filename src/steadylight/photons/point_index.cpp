@@ -172,8 +172,7 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
         const Entry& e = m_entries[position];
         const uint32_t id = ids(position, e.id);
         if (!Ids::keeps(id)) return;
-        const float dx = e.p[0] - p[0], dy = e.p[1] - p[1], dz = e.p[2] - p[2];
-        heap.offer(id, dx * dx + dy * dy + dz * dz);
+        heap.offer(id, distance2({e.p[0], e.p[1], e.p[2]}, {p[0], p[1], p[2]}));
     };
     // Descend towards p; visit the far half of a split afterwards if the heap's radius still
     // reaches the far half's cell. The distance to a cell is kept per axis and updated as the
@@ -251,6 +250,10 @@ void PointIndex::within(Mapped a, Mapped b, Vec3 p, float max_distance2, std::ve
 
 void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {
     search_all(p, k, max_distance2, out, std::pair{this, OwnIds{}});
+}
+
+void PointIndex::k_nearest(Mapped a, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) {
+    search_all(p, k, max_distance2, out, std::pair{a.index, MappedIds{a.ids}});
 }
 
 void PointIndex::k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) {

@@ -50,6 +50,14 @@ public:
     /// k_nearest over the union of two mapped indexes (their ids distinct): the same answer as
     /// one index built over the union with those ids, since both order by distance, then id.
     static void k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out);
+    /// k_nearest over one mapped index.
+    static void k_nearest(Mapped a, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out);
+
+    /// The squared distance every search measures, the same bits wherever it is computed.
+    static float distance2(Vec3 a, Vec3 p) {
+        const float dx = a.x - p.x, dy = a.y - p.y, dz = a.z - p.z;
+        return dx * dx + dy * dy + dz * dz;
+    }
 
     /// Every point within sqrt(max_distance2) of `p`, in the order the search meets them (the
     /// same for every query of the same point and index).
