@@ -318,7 +318,8 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
 
     // Photons in the complete scene: the global, caustic and dynamic maps.
     const StaticPhotonPaths* paths = solution.photon_paths.get();
-    const FramePhotons traced(context, photon, stats, paths, paths ? paths->irradiance.get() : nullptr);
+    const FramePhotons traced(context, photon, stats, paths, paths ? paths->irradiance.get() : nullptr,
+                              ChangedValues::from_static_lists);
     const TracedPhotons& photons = traced.maps;
 
     // Influence of the dynamic objects on each pixel's point.

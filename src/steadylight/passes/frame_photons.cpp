@@ -10,7 +10,7 @@ namespace {
 /// Composed, `reuse` gets what the irradiance at photons may take from `static_irradiance`.
 TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
                          const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
-                         FramePhotons::CausticChanges& caustic_changes,
+                         ChangedValues changed, FramePhotons::CausticChanges& caustic_changes,
                          std::shared_ptr<const StaticIrradianceReuse>& reuse) {
     if (!paths) return trace_photons(context, settings.photons);
     ComposedPhotons composed = compose_photons(context, *paths);
@@ -23,6 +23,7 @@ TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSetting
                 frame_ids[composed.global_static_ids[i]] = uint32_t(i);
         reuse = std::make_shared<const StaticIrradianceReuse>(
             StaticIrradianceReuse{static_irradiance, std::move(composed.global_static_ids), std::move(frame_ids),
+                                  changed == ChangedValues::from_static_lists,
                                   PointIndex(composed.changed_global_points), context.tracer.dynamic_bounds()});
     }
     return std::move(composed.maps);
@@ -31,11 +32,11 @@ TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSetting
 /// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
 TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings,
                                     FrameStats& stats, const StaticPhotonPaths* paths,
-                                    const IrradiancePhotons* static_irradiance,
+                                    const IrradiancePhotons* static_irradiance, ChangedValues changed,
                                     FramePhotons::CausticChanges& caustic_changes,
                                     std::shared_ptr<const StaticIrradianceReuse>& reuse) {
     TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s, [&] {
-        return frame_maps(context, settings, stats, paths, static_irradiance, caustic_changes, reuse);
+        return frame_maps(context, settings, stats, paths, static_irradiance, changed, caustic_changes, reuse);
     });
     stats.global_photons_emitted = maps.global.emitted();
     stats.global_photons_stored = long(maps.global.size());
@@ -49,8 +50,10 @@ TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMap
 }  // namespace
 
 FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                           const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance)
-    : maps(trace_counted_photons(context, settings, stats, paths, static_irradiance, caustic_changes, static_reuse)),
+                           const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
+                           ChangedValues changed)
+    : maps(trace_counted_photons(context, settings, stats, paths, static_irradiance, changed, caustic_changes,
+                                 static_reuse)),
       irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate,
                  surface_coverage(context, Visibility::everything), static_reuse) {}
 

@@ -22,7 +22,8 @@ TEST(FramePhotons, IrradianceTakenFromTheStaticPhotonsIsTheEstimatedOne) {
         const std::string what = "ball frame " + std::to_string(frame);
         const PlacedFrame placed(scene, tracer, bsdfs, frame);
         FrameStats stats;
-        const FramePhotons composed(placed.context(), settings, stats, paths.get(), paths->irradiance.get());
+        const FramePhotons composed(placed.context(), settings, stats, paths.get(), paths->irradiance.get(),
+                                    ChangedValues::from_static_lists);
         const FramePhotons traced(placed.context(), settings, stats);
         ASSERT_TRUE(same_photons(composed.maps.global, traced.maps.global)) << what;
         ASSERT_EQ(composed.irradiance.size(), traced.irradiance.size()) << what;

@@ -59,19 +59,19 @@ void PhotonMap::k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour
                           p, k, max_radius * max_radius, out);
 }
 
-bool PhotonMap::k_nearest_from_base(Vec3 p, int k, float max_radius, const std::vector<Neighbour>& base_nearest,
-                                    int base_k, const std::vector<uint32_t>& base_to_here,
-                                    std::vector<Neighbour>& out) const {
+bool PhotonMap::k_nearest_from_base(Vec3 p, int k, float max_radius, const PhotonMap& base,
+                                    const std::vector<uint32_t>& base_nearest, int base_k,
+                                    const std::vector<uint32_t>& base_to_here, std::vector<Neighbour>& out) const {
     if (!m_overlay || k <= 0) return false;
     const float max_distance2 = max_radius * max_radius;
     // Every base photon nearer than the list's last is in it; beyond it, only a full list
     // leaves some out. Ids here keep the base's order, so the kept ones stay sorted.
     const bool complete = int(base_nearest.size()) < base_k;
-    const float bound2 = complete ? max_distance2 : base_nearest.back().distance2;
+    const float bound2 = complete ? max_distance2 : PointIndex::distance2(base.photons()[base_nearest.back()].p, p);
     thread_local std::vector<Neighbour> kept, added;
     kept.clear();
-    for (const Neighbour& base : base_nearest)
-        if (const uint32_t id = base_to_here[base.index]; id != PointIndex::removed)
+    for (const uint32_t base_id : base_nearest)
+        if (const uint32_t id = base_to_here[base_id]; id != PointIndex::removed)
             kept.push_back({id, PointIndex::distance2(m_photons[id].p, p)});
     PointIndex::k_nearest({&m_overlay->added, m_overlay->added_ids.data()}, p, k, bound2, added);
     // The first k of the two lists merged, as the search's heap orders them.
@@ -208,13 +208,14 @@ std::optional<IrradiancePhotons::Value> IrradiancePhotons::reused_value(uint32_t
     return value;
 }
 
-const std::vector<Neighbour>& IrradiancePhotons::wider_nearest(uint32_t i) const {
+const std::vector<uint32_t>& IrradiancePhotons::wider_nearest(uint32_t i) const {
     enum : uint8_t { empty, writing, ready };
     SL_CHECK(m_wider_state);
     if (m_wider_state[i].load(std::memory_order_acquire) == ready) return m_wider[i];
-    std::vector<Neighbour> nearest;
-    m_global->k_nearest(m_global->photons()[m_photon[i]].p, m_settings.k + wider_margin, m_settings.max_radius,
-                        nearest);
+    thread_local std::vector<Neighbour> found;
+    m_global->k_nearest(m_global->photons()[m_photon[i]].p, m_settings.k + wider_margin, m_settings.max_radius, found);
+    std::vector<uint32_t> nearest(found.size());
+    for (size_t j = 0; j < found.size(); ++j) nearest[j] = found[j].index;
     uint8_t expected = empty;
     if (m_wider_state[i].compare_exchange_strong(expected, writing, std::memory_order_acquire)) {
         m_wider[i] = std::move(nearest);
@@ -226,14 +227,15 @@ const std::vector<Neighbour>& IrradiancePhotons::wider_nearest(uint32_t i) const
 }
 
 bool IrradiancePhotons::nearest_from_static(uint32_t i, std::vector<Neighbour>& out) const {
-    if (!m_reuse) return false;
+    if (!m_reuse || !m_reuse->from_static_lists) return false;
     const uint32_t static_id = m_reuse->static_ids[m_photon[i]];
     if (static_id == PointIndex::removed) return false;  // a new photon
     const IrradiancePhotons& from = *m_reuse->values;
     const std::optional<uint32_t> j = from.carrier(static_id);
     SL_CHECK(j);  // the same bits, the same hash
     return m_global->k_nearest_from_base(m_global->photons()[m_photon[i]].p, m_settings.k, m_settings.max_radius,
-                                         from.wider_nearest(*j), m_settings.k + wider_margin, m_reuse->frame_ids, out);
+                                         *from.m_global, from.wider_nearest(*j), m_settings.k + wider_margin,
+                                         m_reuse->frame_ids, out);
 }
 
 const IrradiancePhotons::Value& IrradiancePhotons::value(uint32_t i) const {

@@ -48,13 +48,14 @@ public:
 
     /// The k nearest photons to `p` within `max_radius`, nearest first.
     void k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out) const;
-    /// k_nearest of a composed map from what its base knows: `base_nearest`, the `base_k` nearest
-    /// base photons to p within max_radius (base ids, nearest first; all of them there when
-    /// fewer), and `base_to_here`, each base photon's id in this map or PointIndex::removed. It
-    /// searches only the added photons' small index and answers exactly as k_nearest does; false
-    /// (out unspecified) when the removed ones leave the list too short to tell, and for a map
-    /// that is not composed.
-    bool k_nearest_from_base(Vec3 p, int k, float max_radius, const std::vector<Neighbour>& base_nearest, int base_k,
+    /// k_nearest of a composed map from what its base knows: `base_nearest`, the ids of the
+    /// `base_k` nearest photons of `base` to p within max_radius (nearest first; all of them
+    /// there when fewer), and `base_to_here`, each base photon's id in this map or
+    /// PointIndex::removed. It searches only the added photons' small index and answers exactly
+    /// as k_nearest does; false (out unspecified) when the removed ones leave the list too short
+    /// to tell, and for a map that is not composed.
+    bool k_nearest_from_base(Vec3 p, int k, float max_radius, const PhotonMap& base,
+                             const std::vector<uint32_t>& base_nearest, int base_k,
                              const std::vector<uint32_t>& base_to_here, std::vector<Neighbour>& out) const;
     /// Every photon within `radius` of `p`, in an order that depends on the map and `p` alone.
     void within(Vec3 p, float radius, std::vector<Neighbour>& out) const;
@@ -115,8 +116,12 @@ class IrradiancePhotons;
 /// the static photons' order), the same disc, probes that meet the same static surfaces.
 struct StaticIrradianceReuse {
     const IrradiancePhotons* values = nullptr;  // over the static map, probing the static scene
-    std::vector<uint32_t> static_ids;     // per photon of the frame's map: its static photon, or PointIndex::removed
-    std::vector<uint32_t> frame_ids;      // per static photon: its photon in the frame's map, or PointIndex::removed
+    std::vector<uint32_t> static_ids;  // per photon of the frame's map: its static photon, or PointIndex::removed
+    std::vector<uint32_t> frame_ids;   // per static photon: its photon in the frame's map, or PointIndex::removed
+    // Whether a value estimated again finds its neighbours from the static photon's list
+    // (IrradiancePhotons::wider_nearest), kept once found: for the few values a localized frame
+    // needs, not the photon method's every value (a list for each, 300 bytes).
+    bool from_static_lists = false;
     PointIndex changed;                   // where static photons were removed and new ones added
     std::vector<BoundingSphere> dynamic;  // the dynamic objects
 };
@@ -175,9 +180,9 @@ private:
     const Value& value(uint32_t i) const;
     /// Value i as `m_reuse` has it, if it may be taken from there.
     std::optional<Value> reused_value(uint32_t i) const;
-    /// The k + wider_margin nearest photons to value i's photon (a map of its own), found the
-    /// first time.
-    const std::vector<Neighbour>& wider_nearest(uint32_t i) const;
+    /// The ids of the k + wider_margin nearest photons to value i's photon (a map of its own),
+    /// found the first time.
+    const std::vector<uint32_t>& wider_nearest(uint32_t i) const;
     /// The k nearest photons to value i's photon from the static photon's wider_nearest list, if
     /// they tell them.
     bool nearest_from_static(uint32_t i, std::vector<Neighbour>& out) const;
@@ -193,7 +198,7 @@ private:
     std::vector<Vec3> m_n;
     mutable std::vector<Value> m_values;
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;        // per value: empty, being written, ready
-    mutable std::vector<std::vector<Neighbour>> m_wider;    // per value, without `reuse`: wider_nearest
+    mutable std::vector<std::vector<uint32_t>> m_wider;     // per value, without `reuse`: wider_nearest
     std::unique_ptr<std::atomic<uint8_t>[]> m_wider_state;  // and its state, as m_state
     mutable std::atomic<long> m_computed = 0, m_reused = 0, m_from_static_lists = 0;
     PointIndex m_index;
