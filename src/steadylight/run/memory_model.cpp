@@ -16,10 +16,11 @@ namespace {
 
 constexpr double fixed_bytes = 64e6;
 constexpr double bytes_per_triangle = 160;
-constexpr double bytes_per_pixel_photon_methods = 250;
+constexpr double bytes_per_pixel_photon = 300;
+constexpr double bytes_per_pixel_localized = 500;  // localized and frozen: their dozen layers, the static frame
 constexpr double bytes_per_pixel_path = 60;
 constexpr double bytes_per_pixel_alpha = 12;  // the alpha image of --transparent-background
-constexpr double bytes_per_photon_path = 300;
+constexpr double bytes_per_photon_path = 650;
 constexpr double bytes_per_world_pixel = 48;
 
 /// A limit in bytes from a file holding one number ("max" or a huge value: none).
@@ -59,9 +60,11 @@ MemoryEstimate estimate_memory(const RenderSettings& settings, const Scene& scen
     if (scene.desc().world) need.scene += bytes_per_world_pixel * double(scene.desc().world->radiance->pixel_count());
     const Camera& camera = scene.evaluate(0).camera;
     const bool path = settings.method == Method::path;
+    const double per_pixel = path                                ? bytes_per_pixel_path
+                             : settings.method == Method::photon ? bytes_per_pixel_photon
+                                                                 : bytes_per_pixel_localized;
     need.pixels = double(camera.width) * double(camera.height) *
-                  ((path ? bytes_per_pixel_path : bytes_per_pixel_photon_methods) +
-                   (settings.output.transparent_background ? bytes_per_pixel_alpha : 0));
+                  (per_pixel + (settings.output.transparent_background ? bytes_per_pixel_alpha : 0));
     if (!path)
         need.photons = bytes_per_photon_path * (double(settings.photon.photons.global_photons) +
                                                 double(settings.photon.photons.caustic_photons));

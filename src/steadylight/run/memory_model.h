@@ -4,14 +4,16 @@
 // out-of-memory kill an hour later. The model (docs/usage.md, "Memory"), measured by peak
 // resident size on BALL and the 2.1-million-triangle terrain, rounded up: a fixed 64 MB (the
 // program, its libraries, the scene's small parts); 160 bytes per triangle (the mesh and Embree's
-// BVH; measured 150); per pixel 250 bytes for the photon methods (the frame's layers, the caches'
-// pixel bookkeeping; measured 140-190) and 60 for the path tracer (measured 25); 300 bytes per
-// photon path emitted (global and caustic: stored photons, their kd-trees, the precomputed
-// irradiance and the static paths kept for reuse; measured 220 on BALL, more in brighter rooms
-// whose paths are longer); 48 bytes per pixel of a world image (measured 41 on the courtyard: the
-// image, its two sampling tables, the EXR decoder's buffers). The localized method's still-camera
-// static frame is not counted: it is optional, and made only when it fits in a quarter of what
-// is available (pixel_reuse.h static_frame_memory_share).
+// BVH; measured 150); per pixel 300 bytes for the photon method (the frame's layers, the
+// cache's pixel bookkeeping, a frame's layers held while the next renders; measured 250), 500
+// for the localized and frozen methods (a dozen layers, and the still-camera static frame;
+// measured 460) and 60 for the path tracer (measured 25); 650 bytes per photon path emitted
+// (global and caustic: stored photons, their kd-trees, the precomputed irradiance, the static
+// paths kept for reuse and the frame's composed maps; measured 580 on BALL from 800,000 to 3.2
+// million, more in brighter rooms whose paths are longer); 48 bytes per pixel of a world image
+// (measured 41 on the courtyard: the image, its two sampling tables, the EXR decoder's buffers).
+// The static frame is counted at its usual size; one that would outgrow its share of what is
+// available is not kept (pixel_reuse.h static_frame_memory_share).
 #pragma once
 
 #include <cstddef>

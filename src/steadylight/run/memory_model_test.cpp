@@ -29,9 +29,13 @@ TEST(MemoryModel, GrowsWithPixelsPhotonsTrianglesAndTheWorldImage) {
     settings.method = Method::photon;
     settings.photon.photons = {.global_photons = 1000, .caustic_photons = 3000};
     const MemoryEstimate photon = estimate_memory(settings, scene);
-    EXPECT_DOUBLE_EQ(photon.pixels, 100 * 50 * 250.0);
-    EXPECT_DOUBLE_EQ(photon.photons, 4000 * 300.0);
+    EXPECT_DOUBLE_EQ(photon.pixels, 100 * 50 * 300.0);
+    EXPECT_DOUBLE_EQ(photon.photons, 4000 * 650.0);
     EXPECT_DOUBLE_EQ(photon.scene, 2 * 160.0);
+    for (const Method layered : {Method::localized, Method::frozen}) {
+        settings.method = layered;
+        EXPECT_DOUBLE_EQ(estimate_memory(settings, scene).pixels, 100 * 50 * 500.0);
+    }
     settings.method = Method::path;
     const MemoryEstimate path = estimate_memory(settings, scene);
     EXPECT_DOUBLE_EQ(path.pixels, 100 * 50 * 60.0);
