@@ -13,8 +13,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # What the tests need beyond the build: clang-format (repo.format), Chromium (cli.report_chromium),
-# sshfs and an SSH server (farm.sshfs), Blender (blender.addon; not the demo's: it renders alone).
-bash scripts/setup.sh clang-format chromium sshfs openssh-server blender
+# sshfs and an SSH server (farm.sshfs), Blender (blender.addon; not the demo's: it renders alone)
+# and NumPy, which Blender's own glTF exporter imports but Debian's blender package does not
+# depend on.
+bash scripts/setup.sh clang-format chromium sshfs openssh-server blender python3-numpy
 
 # Tests over 10 s each under the address and undefined sanitizers (60% of that suite's time):
 # the kill-and-resume and farm runs, the truth suite's renders, the longest animation tests.
