@@ -114,12 +114,19 @@ bool reuses_photon_paths(const RenderSettings& settings) {
     return settings.reuse && method_info(settings.method).reads.photon;
 }
 
+/// Whether the segment's static photon paths are traced: for frames to compose their maps from,
+/// and for the frame pass (the localized and frozen methods) to carry the static irradiance
+/// values from, its photons traced whole or not (ChangedValues::carried).
+bool traces_static_photon_paths(const RenderSettings& settings) {
+    return reuses_photon_paths(settings) || settings.method == Method::localized || settings.method == Method::frozen;
+}
+
 /// What every frame of `segment` starts from: the method's static pass (or its file), and the
-/// static photon paths when frames reuse them. Only for methods that have either.
+/// static photon paths when frames use them. Only for methods that have either.
 StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
                                 const Segment& segment) {
     std::shared_ptr<const StaticPhotonPaths> paths;
-    if (reuses_photon_paths(settings)) {
+    if (traces_static_photon_paths(settings)) {
         const Stopwatch time;
         paths = trace_segment_photon_paths(scene, tracer, segment, settings.photon);
         spdlog::info("static photon paths: {} global and {} caustic paths, {} rays, {:.1f} MB, traced in {:.2f} s",
@@ -130,6 +137,7 @@ StaticSolution segment_solution(const RenderSettings& settings, const Scene& sce
     if (!method_info(settings.method).has_static_pass)
         return {IrradianceCache(settings.photon.cache), 0, false, "", std::move(paths)};
     StaticSolution solution = static_pass(settings, scene, tracer, segment, std::move(paths));
+    solution.compose_photons = reuses_photon_paths(settings);
     if (settings.reuse && settings.method == Method::localized && solution.photon_paths)
         solution.static_frame = segment_static_frame(scene, tracer, segment, solution, settings.photon,
                                                      settings.localized, double(memory_available().bytes));
@@ -316,7 +324,7 @@ void render_frames(const RenderSettings& settings, const Scene& scene, const std
     const ScopedCheckpointListener listening(&progress);
     const std::optional<int> interrupt_after = test_interrupt_after_frames();
     FrameWriter writer([&summary](int frame) { summary.frames_written.push_back(frame); });
-    const bool needs_solution = method_info(settings.method).has_static_pass || reuses_photon_paths(settings);
+    const bool needs_solution = method_info(settings.method).has_static_pass || traces_static_photon_paths(settings);
     // Photon methods say how many photons of light from far away reach what the camera sees.
     const std::optional<CameraSeenSides> seen = settings.method != Method::path && has_distant_light(scene.desc())
                                                     ? std::optional<CameraSeenSides>(std::in_place, scene, tracer)

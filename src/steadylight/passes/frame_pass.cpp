@@ -319,7 +319,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     // Photons in the complete scene: the global, caustic and dynamic maps.
     const StaticPhotonPaths* paths = solution.photon_paths.get();
     const FramePhotons traced(context, photon, stats, paths, paths ? paths->irradiance.get() : nullptr,
-                              ChangedValues::from_static_lists);
+                              ChangedValues::carried, solution.compose_photons);
     const TracedPhotons& photons = traced.maps;
 
     // Influence of the dynamic objects on each pixel's point.
@@ -368,6 +368,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     stats.irradiance_photons = traced.irradiance.computed();
     stats.irradiance_reused = traced.irradiance.reused();
     stats.irradiance_from_lists = traced.irradiance.from_static_lists();
+    stats.irradiance_carried = traced.irradiance.carried();
     stats.total_s = total.elapsed_s();
     return out;
 }

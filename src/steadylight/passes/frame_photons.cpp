@@ -7,43 +7,43 @@ namespace steadylight {
 namespace {
 
 /// The photons traced whole, or composed from the static paths; counts the paths retraced.
-/// Composed, `reuse` gets what the irradiance at photons may take from `static_irradiance`.
+/// With `static_irradiance`, `reuse` gets what the irradiance at photons may take from it.
 TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
-                         const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
+                         const StaticPhotonPaths* paths, bool compose, const IrradiancePhotons* static_irradiance,
                          ChangedValues changed, FramePhotons::CausticChanges& caustic_changes,
                          std::shared_ptr<const StaticIrradianceReuse>& reuse) {
-    if (!paths) return trace_photons(context, settings.photons);
+    const auto reuse_of = [&](const PhotonMap& global, std::vector<uint32_t> static_ids) {
+        if (static_irradiance)
+            reuse = make_static_irradiance_reuse(*static_irradiance, paths->global.photons, global,
+                                                 std::move(static_ids), changed, context.tracer.dynamic_bounds());
+    };
+    if (!paths || !compose) {
+        TracedPhotons traced = trace_photons(context, settings.photons);
+        if (paths) reuse_of(traced.global, static_ids_by_bits(traced.global, paths->global.photons));
+        return traced;
+    }
     ComposedPhotons composed = compose_photons(context, *paths);
     stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
     caustic_changes = {composed.caustic_traced, std::move(composed.changed_caustic_points)};
-    if (static_irradiance) {
-        std::vector<uint32_t> frame_ids(paths->global.photons.size(), PointIndex::removed);
-        for (size_t i = 0; i < composed.global_static_ids.size(); ++i)
-            if (composed.global_static_ids[i] != PointIndex::removed)
-                frame_ids[composed.global_static_ids[i]] = uint32_t(i);
-        reuse = std::make_shared<const StaticIrradianceReuse>(
-            StaticIrradianceReuse{static_irradiance, std::move(composed.global_static_ids), std::move(frame_ids),
-                                  changed == ChangedValues::from_static_lists,
-                                  PointIndex(composed.changed_global_points), context.tracer.dynamic_bounds()});
-    }
+    reuse_of(composed.maps.global, std::move(composed.global_static_ids));
     return std::move(composed.maps);
 }
 
 /// The photon pass as a phase of the frame: traced, timed and counted in `stats`.
 TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMappingSettings& settings,
-                                    FrameStats& stats, const StaticPhotonPaths* paths,
+                                    FrameStats& stats, const StaticPhotonPaths* paths, bool compose,
                                     const IrradiancePhotons* static_irradiance, ChangedValues changed,
                                     FramePhotons::CausticChanges& caustic_changes,
                                     std::shared_ptr<const StaticIrradianceReuse>& reuse) {
     TracedPhotons maps = timed_phase("photons", stats.photon_tracing_s, [&] {
-        return frame_maps(context, settings, stats, paths, static_irradiance, changed, caustic_changes, reuse);
+        return frame_maps(context, settings, stats, paths, compose, static_irradiance, changed, caustic_changes, reuse);
     });
     stats.global_photons_emitted = maps.global.emitted();
     stats.global_photons_stored = long(maps.global.size());
     stats.caustic_photons_emitted = maps.caustic.emitted();
     stats.caustic_photons_stored = long(maps.caustic.size());
     stats.dynamic_photons_stored = long(maps.dynamic.size());
-    if (!paths) stats.retraced_photon_paths = maps.global.emitted() + maps.caustic.emitted();  // every one
+    if (!paths || !compose) stats.retraced_photon_paths = maps.global.emitted() + maps.caustic.emitted();  // every one
     return maps;
 }
 
@@ -51,8 +51,8 @@ TracedPhotons trace_counted_photons(const FrameContext& context, const PhotonMap
 
 FramePhotons::FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
                            const StaticPhotonPaths* paths, const IrradiancePhotons* static_irradiance,
-                           ChangedValues changed)
-    : maps(trace_counted_photons(context, settings, stats, paths, static_irradiance, changed, caustic_changes,
+                           ChangedValues changed, bool compose)
+    : maps(trace_counted_photons(context, settings, stats, paths, compose, static_irradiance, changed, caustic_changes,
                                  static_reuse)),
       irradiance(maps.global, settings.irradiance_stride, settings.irradiance_estimate,
                  surface_coverage(context, Visibility::everything), static_reuse) {}

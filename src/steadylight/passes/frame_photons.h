@@ -9,25 +9,19 @@
 
 namespace steadylight {
 
-/// How a frame estimates again the irradiance values that changed around their photons:
-/// searching its whole map (the photon method, which needs every value), or from the static
-/// photons' lists of neighbours, kept once found (the localized method, which needs few; a list
-/// for every value would cost 300 bytes each).
-enum class ChangedValues { searched, from_static_lists };
-
 /// A frame's photon maps and the irradiance at its photons. Construction traces the photons as
 /// the phase "photons" and records the counts and the time in `stats`: all of them, or with
-/// `paths` (the segment's static photon paths) only those the dynamic objects change, for the
-/// same maps (photon_paths.h). With paths and `static_irradiance` (over their global map,
-/// probing the static scene) the irradiance at photons takes the static values where nothing
-/// changed around them, for the same values (StaticIrradianceReuse), and estimates the others as
-/// `changed` says, for the same values too. Never copied or moved:
-/// `irradiance` refers to `maps.global`, to `static_irradiance` and to `context`, which must
-/// outlive it.
+/// `paths` (the segment's static photon paths) and `compose` only those the dynamic objects
+/// change, for the same maps (photon_paths.h). With paths and `static_irradiance` (over their
+/// global map, probing the static scene) the irradiance at photons takes the static values where
+/// nothing changed around them, for the same values (StaticIrradianceReuse), and where something
+/// did does as `changed` says; traced whole, the frame's photons are told from the static ones
+/// by their bits, for the same values again. Never copied or moved: `irradiance` refers to
+/// `maps.global`, to `static_irradiance` and to `context`, which must outlive it.
 struct FramePhotons {
     FramePhotons(const FrameContext& context, const PhotonMappingSettings& settings, FrameStats& stats,
                  const StaticPhotonPaths* paths = nullptr, const IrradiancePhotons* static_irradiance = nullptr,
-                 ChangedValues changed = ChangedValues::searched);
+                 ChangedValues changed = ChangedValues::searched, bool compose = true);
     FramePhotons(const FramePhotons&) = delete;
     FramePhotons& operator=(const FramePhotons&) = delete;
 

@@ -22,6 +22,7 @@ void for_each_json_field(Stats& s, Visit&& visit) {
     visit("/photons/irradiance_precomputed", s.irradiance_photons);
     visit("/photons/irradiance_reused", s.irradiance_reused);
     visit("/photons/irradiance_from_lists", s.irradiance_from_lists);
+    visit("/photons/irradiance_carried", s.irradiance_carried);
     visit("/irradiance_records", s.irradiance_records);
     visit("/static_records", s.static_records);
     visit("/fallback_gathers", s.fallback_gathers);

@@ -32,6 +32,7 @@ struct FrameStats {
     long irradiance_photons = 0;           // photons whose irradiance was computed (lazily, for gathers)
     long irradiance_reused = 0;            // and taken from the static photons' instead (nothing changed there)
     long irradiance_from_lists = 0;        // of the computed, those whose neighbours came from the static lists
+    long irradiance_carried = 0;           // the static ones plus the photons changed around them
     long irradiance_records = 0;           // computed for this frame (localized: the dynamic cache, L_y)
     long static_records = 0;               // localized: records of the segment's static cache
     long fallback_gathers = 0;             // gathers at points the cache did not cover

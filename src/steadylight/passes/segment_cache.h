@@ -25,7 +25,8 @@ struct StaticSolution {
     bool loaded = false;                                    // read from the cache file instead of computed
     std::string file_note;                                  // why the file was not used, when it was not
     std::shared_ptr<const StaticPhotonPaths> photon_paths;  // null: frames trace all their photons
-    std::shared_ptr<const StaticFrame> static_frame;        // null: frames shade every pixel
+    bool compose_photons = true;  // false: frames trace all their photons and only tell photon_paths' from them
+    std::shared_ptr<const StaticFrame> static_frame;  // null: frames shade every pixel
     /// The records' disc shares for L_t's correction, made by the first frame that needs them.
     std::shared_ptr<const CorrectionCoverage> correction_coverage = std::make_shared<CorrectionCoverage>();
 

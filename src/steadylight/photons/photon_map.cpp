@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <thread>
+#include <unordered_map>
 
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
@@ -31,6 +32,31 @@ float estimate_radius2(const std::vector<Neighbour>& neighbours, const DensitySe
     return int(neighbours.size()) < settings.k ? settings.max_radius * settings.max_radius
                                                : neighbours.back().distance2;
 }
+
+/// A disc of radius r around p (normal n), probed (`disc`): which photons on it an estimate counts.
+struct ProbedDisc {
+    Vec3 p, n;
+    float r, r2;
+    DiscProbes disc;
+    const SurfaceCoverage& coverage;
+    OrthonormalBasis basis = OrthonormalBasis::from_normal(n);
+
+    /// Whether the estimate counts `photon`, found on the disc: arriving on n's side, and, in a
+    /// cell whose probe missed the surface or in front of the disc's plane, reached by the surface.
+    bool counts(const Photon& photon) const {
+        if (!same_side(photon, n)) return false;
+        const Vec3 offset = photon.p - p;
+        bool untested = dot(offset, n) <= coverage_lift * r;
+        if (untested && disc.share() < 1) {
+            const Vec3 local = basis.to_local(offset);
+            untested = disc.reached_cell(local.x, local.y, r2);
+        }
+        return untested || coverage.reaches(p, n, r, photon.p);
+    }
+    /// The irradiance a power summed over the disc gives: over its area on the surface (at least
+    /// what one probe of 16 gives).
+    Rgb irradiance(Rgb power) const { return power / (pi * r2 * std::max(disc.share(), 1.0f / 16)); }
+};
 
 }  // namespace
 
@@ -124,24 +150,13 @@ Rgb PhotonMap::irradiance_on_surface(const std::vector<Neighbour>& neighbours, V
     if (radius) *radius = r;
     if (probes) *probes = DiscProbes{};
     if (neighbours.empty()) return {};
-    const DiscProbes disc = coverage.probes(p, n, r, coverage_lift * r, r, seed);
-    if (probes) *probes = disc;
-    const bool whole = disc.share() == 1;
-    const OrthonormalBasis basis = OrthonormalBasis::from_normal(n);
+    const ProbedDisc disc{p, n, r, r2, coverage.probes(p, n, r, coverage_lift * r, r, seed), coverage};
+    if (probes) *probes = disc.disc;
     const size_t inside = int(neighbours.size()) < settings.k ? neighbours.size() : neighbours.size() - 1;
     Rgb sum;
-    for (size_t j = 0; j < inside; ++j) {
-        const Photon& photon = m_photons[neighbours[j].index];
-        if (!same_side(photon, n)) continue;
-        const Vec3 offset = photon.p - p;
-        bool untested = dot(offset, n) <= coverage_lift * r;
-        if (untested && !whole) {
-            const Vec3 local = basis.to_local(offset);
-            untested = disc.reached_cell(local.x, local.y, r2);
-        }
-        if (untested || coverage.reaches(p, n, r, photon.p)) sum += photon.power;
-    }
-    return sum / (pi * r2 * std::max(disc.share(), 1.0f / 16));
+    for (size_t j = 0; j < inside; ++j)
+        if (const Photon& photon = m_photons[neighbours[j].index]; disc.counts(photon)) sum += photon.power;
+    return disc.irradiance(sum);
 }
 
 Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& settings, float* radius) const {
@@ -188,23 +203,43 @@ std::optional<uint32_t> IrradiancePhotons::carrier(uint32_t photon) const {
     return uint32_t(it - m_photon.begin());
 }
 
-std::optional<IrradiancePhotons::Value> IrradiancePhotons::reused_value(uint32_t i) const {
+std::optional<IrradiancePhotons::Value> IrradiancePhotons::reused_value(uint32_t i, bool& carried) const {
+    carried = false;
     if (!m_reuse) return std::nullopt;
     const uint32_t static_id = m_reuse->static_ids[m_photon[i]];
     if (static_id == PointIndex::removed) return std::nullopt;  // a new photon
     const IrradiancePhotons& from = *m_reuse->values;
     const std::optional<uint32_t> j = from.carrier(static_id);
     SL_CHECK(j);  // the same bits, the same hash
-    const Value& value = from.value(*j);
-    const Vec3 p = m_global->photons()[m_photon[i]].p;
-    // A photon removed or added within the radius (a little beyond: rounding) changes the estimate.
-    thread_local std::vector<Neighbour> nearest;
-    m_reuse->changed.k_nearest(p, 1, value.radius * value.radius * 1.0001f + 1e-30f, nearest);
-    if (!nearest.empty()) return std::nullopt;
-    // So may a dynamic object its probes meet.
-    const float extent = coverage_probe_extent(p, value.radius);
+    Value value = from.value(*j);
+    const Photon& photon = m_global->photons()[m_photon[i]];
+    // A dynamic object its probes may meet changes the disc.
+    const float extent = coverage_probe_extent(photon.p, value.radius);
     for (const BoundingSphere& object : m_reuse->dynamic)
-        if (!object.empty() && length(object.center - p) <= object.radius + extent) return std::nullopt;
+        if (!object.empty() && length(object.center - photon.p) <= object.radius + extent) return std::nullopt;
+    // So does a photon removed or added within its radius (a little beyond: rounding): to be
+    // carried, all of them; to tell that the value must be estimated again, one.
+    const bool carry = m_reuse->changed_values == ChangedValues::carried && m_coverage;
+    const float reach2 = value.radius * value.radius * 1.0001f + 1e-30f;
+    thread_local std::vector<Neighbour> changes;
+    if (carry)
+        m_reuse->changed.within(photon.p, reach2, changes);
+    else
+        m_reuse->changed.k_nearest(photon.p, 1, reach2, changes);
+    if (changes.empty()) return value;
+    if (!carry) return std::nullopt;
+    // Carried: the fixed-radius estimate on the static disc over the frame's photons is the
+    // static one plus the power of the changes on the disc, summed in their order.
+    std::sort(changes.begin(), changes.end(), [](const Neighbour& a, const Neighbour& b) { return a.index < b.index; });
+    const float r2 = value.radius * value.radius;
+    const ProbedDisc disc{photon.p, photon.n, value.radius, r2, value.probes, m_coverage};
+    Rgb change;
+    for (const Neighbour& found : changes)
+        if (const Photon& changed = m_reuse->changes[found.index]; found.distance2 < r2 && disc.counts(changed))
+            change += changed.power;
+    const Rgb E = value.E + disc.irradiance(change);
+    value.E = {std::max(0.0f, E.r), std::max(0.0f, E.g), std::max(0.0f, E.b)};  // rounding, when all went
+    carried = true;
     return value;
 }
 
@@ -227,7 +262,7 @@ const std::vector<uint32_t>& IrradiancePhotons::wider_nearest(uint32_t i) const 
 }
 
 bool IrradiancePhotons::nearest_from_static(uint32_t i, std::vector<Neighbour>& out) const {
-    if (!m_reuse || !m_reuse->from_static_lists) return false;
+    if (!m_reuse || m_reuse->changed_values != ChangedValues::carried) return false;
     const uint32_t static_id = m_reuse->static_ids[m_photon[i]];
     if (static_id == PointIndex::removed) return false;  // a new photon
     const IrradiancePhotons& from = *m_reuse->values;
@@ -242,7 +277,8 @@ const IrradiancePhotons::Value& IrradiancePhotons::value(uint32_t i) const {
     enum : uint8_t { empty, writing, ready };
     if (m_state[i].load(std::memory_order_acquire) == ready) return m_values[i];
     // A pure function of the map: whichever thread computes it first, the value is the same.
-    const std::optional<Value> reused = reused_value(i);
+    bool carried = false;
+    const std::optional<Value> reused = reused_value(i, carried);
     thread_local std::vector<Neighbour> nearest;
     Value value;
     if (reused) {
@@ -262,7 +298,7 @@ const IrradiancePhotons::Value& IrradiancePhotons::value(uint32_t i) const {
     if (m_state[i].compare_exchange_strong(expected, writing, std::memory_order_acquire)) {
         m_values[i] = value;
         m_state[i].store(ready, std::memory_order_release);
-        (reused ? m_reused : m_computed).fetch_add(1, std::memory_order_relaxed);
+        (carried ? m_carried : reused ? m_reused : m_computed).fetch_add(1, std::memory_order_relaxed);
         return m_values[i];
     }
     // Another thread is writing the same value: wait for it.
@@ -303,6 +339,52 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
         if (int(neighbours.size()) < k) break;  // nothing further within reach
     }
     return std::nullopt;
+}
+
+std::shared_ptr<const StaticIrradianceReuse> make_static_irradiance_reuse(
+    const IrradiancePhotons& values, const PhotonMap& static_map, const PhotonMap& frame_map,
+    std::vector<uint32_t> static_ids, ChangedValues changed_values, std::vector<BoundingSphere> dynamic) {
+    SL_CHECK_EQ(static_ids.size(), frame_map.size());
+    auto reuse = std::make_shared<StaticIrradianceReuse>();
+    reuse->values = &values;
+    reuse->frame_ids.assign(static_map.size(), PointIndex::removed);
+    for (size_t i = 0; i < static_ids.size(); ++i)
+        if (static_ids[i] != PointIndex::removed) reuse->frame_ids[static_ids[i]] = uint32_t(i);
+    for (size_t i = 0; i < static_map.size(); ++i) {
+        if (reuse->frame_ids[i] != PointIndex::removed) continue;
+        Photon removed = static_map.photons()[i];
+        removed.power = removed.power * -1.0f;  // exact
+        reuse->changes.push_back(removed);
+    }
+    for (size_t i = 0; i < static_ids.size(); ++i)
+        if (static_ids[i] == PointIndex::removed) reuse->changes.push_back(frame_map.photons()[i]);
+    reuse->changed = PointIndex(positions_of(reuse->changes));
+    reuse->static_ids = std::move(static_ids);
+    reuse->changed_values = changed_values;
+    reuse->dynamic = std::move(dynamic);
+    return reuse;
+}
+
+std::vector<uint32_t> static_ids_by_bits(const PhotonMap& frame_map, const PhotonMap& static_map) {
+    // Static photons by their bits, equal ones in order; each frame photon takes the first left.
+    const auto bits_hash = [](const Photon& photon) { return hash_bits(photon.p, photon.wi); };
+    std::unordered_multimap<uint64_t, uint32_t> by_hash;
+    by_hash.reserve(static_map.size());
+    for (size_t i = 0; i < static_map.size(); ++i) by_hash.emplace(bits_hash(static_map.photons()[i]), uint32_t(i));
+    std::vector<uint32_t> static_ids(frame_map.size(), PointIndex::removed);
+    std::vector<bool> taken(static_map.size(), false);
+    for (size_t i = 0; i < frame_map.size(); ++i) {
+        const Photon& photon = frame_map.photons()[i];
+        const auto [first, last] = by_hash.equal_range(bits_hash(photon));
+        uint32_t best = PointIndex::removed;
+        for (auto it = first; it != last; ++it)
+            if (!taken[it->second] && same_bits(static_map.photons()[it->second], photon) && it->second < best)
+                best = it->second;
+        if (best == PointIndex::removed) continue;
+        taken[best] = true;
+        static_ids[i] = best;
+    }
+    return static_ids;
 }
 
 bool same_photons(const PhotonMap& a, const PhotonMap& b) {

@@ -108,23 +108,48 @@ bool same_photons(const PhotonMap& a, const PhotonMap& b);
 
 class IrradiancePhotons;
 
+/// How a frame gets the irradiance values at static photons that something changed around:
+/// estimated again by searching its whole map (the photon method, which needs every value, and
+/// estimates every frame from scratch), or carried (the localized method): the static value plus
+/// the change, the photons removed and added within the static estimate's disc, each with its
+/// sign, over that disc's area and share, wherever no dynamic object comes within reach of the
+/// disc's probes. A carried value is the fixed-radius estimate over the frame's map on the
+/// static disc; it costs what changed in the disc, and a photon far off in the disc changes it
+/// by its own power, not by moving the k-th photon. Where a dynamic object does come within
+/// reach, the value is estimated again, its neighbours from the static photon's list of a few
+/// more (IrradiancePhotons::wider_nearest, kept once found: for the few values a localized frame
+/// needs, not the photon method's every value, a list for each being 300 bytes).
+enum class ChangedValues { searched, carried };
+
 /// What a frame's irradiance photons take from the segment's static ones instead of estimating
 /// again (docs/notes/localized-irradiance-at-photons.md): the value at a photon the frame
 /// kept from the static map is the static one where no photon was removed or added within its
 /// estimate's radius and no dynamic object lies within its probes' extent. It is then the same,
 /// bit for bit: the same neighbours in the same order (ties go by index, and the frame's map keeps
-/// the static photons' order), the same disc, probes that meet the same static surfaces.
+/// the static photons' order), the same disc, probes that meet the same static surfaces. Where
+/// photons were removed or added, `changed_values` says what to do.
 struct StaticIrradianceReuse {
     const IrradiancePhotons* values = nullptr;  // over the static map, probing the static scene
     std::vector<uint32_t> static_ids;  // per photon of the frame's map: its static photon, or PointIndex::removed
     std::vector<uint32_t> frame_ids;   // per static photon: its photon in the frame's map, or PointIndex::removed
-    // Whether a value estimated again finds its neighbours from the static photon's list
-    // (IrradiancePhotons::wider_nearest), kept once found: for the few values a localized frame
-    // needs, not the photon method's every value (a list for each, 300 bytes).
-    bool from_static_lists = false;
-    PointIndex changed;                   // where static photons were removed and new ones added
+    ChangedValues changed_values = ChangedValues::searched;
+    // The static photons removed, their power negated, then the photons added, each in its map's
+    // order, and their index.
+    std::vector<Photon> changes;
+    PointIndex changed;
     std::vector<BoundingSphere> dynamic;  // the dynamic objects
 };
+
+/// The reuse of `values` (over `static_map`) by a frame whose global map is `frame_map`,
+/// `static_ids` giving each of its photons' static photon (or PointIndex::removed).
+std::shared_ptr<const StaticIrradianceReuse> make_static_irradiance_reuse(
+    const IrradiancePhotons& values, const PhotonMap& static_map, const PhotonMap& frame_map,
+    std::vector<uint32_t> static_ids, ChangedValues changed_values, std::vector<BoundingSphere> dynamic);
+
+/// Each photon of `frame_map` that is a photon of `static_map` bit for bit (same_bits): its
+/// index there, in order among equal ones; else PointIndex::removed. For a frame traced whole,
+/// the static_ids its composition from the static paths would have given.
+std::vector<uint32_t> static_ids_by_bits(const PhotonMap& frame_map, const PhotonMap& static_map);
 
 /// Irradiance precomputed at one in `stride` photons of a global map (Christensen 1999), chosen
 /// by a hash of the photon itself, so that a photon a frame keeps from the static map carries a
@@ -135,13 +160,14 @@ struct StaticIrradianceReuse {
 /// first time a look-up needs it, then kept. A frame of the localized method looks up only near
 /// its few L_y records, so most values are never needed (compute_all() when they all are), and
 /// with `reuse` those nothing changed around are the static ones (about a fifth on BALL: the
-/// changed photons are whole path tails, spread over the room). Where something did change, the
-/// frame's estimate finds its k nearest photons from the static photon's list of a few more
-/// (wider_nearest, kept once found) and the frame's added photons, without searching the whole
-/// map, whenever the removed ones leave that list long enough to tell: the same neighbours, the
-/// same value. Thread-safe; values do not depend on
-/// which thread computes them first. The map must outlive this object and stay where it is, and
-/// so must what `coverage` and `reuse` refer to while values are computed.
+/// changed photons are whole path tails, spread over the room), and where something did change,
+/// carried or estimated again as `reuse` says (ChangedValues). An estimate made again finds its
+/// k nearest photons from the static photon's list of a few more (wider_nearest, kept once
+/// found) and the frame's added photons, without searching the whole map, whenever the removed
+/// ones leave that list long enough to tell: the same neighbours, the same value. Thread-safe;
+/// values do not depend on which thread computes them first. The map must outlive this object
+/// and stay where it is, and so must what `coverage` and `reuse` refer to while values are
+/// computed.
 class IrradiancePhotons {
 public:
     IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings, SurfaceCoverage coverage,
@@ -157,12 +183,14 @@ public:
     /// whole scene anyway (the photon method, the static pass), since photons are visited in order.
     void compute_all() const;
     /// Photons that carry a precomputed value, how many values have been estimated so far, and
-    /// how many were taken from `reuse` instead.
+    /// how many were taken from `reuse` as they are instead.
     size_t size() const { return m_values.size(); }
     long computed() const { return m_computed.load(); }
     long reused() const { return m_reused.load(); }
     /// Of the computed values, those whose neighbours came from the static photons' lists.
     long from_static_lists() const { return m_from_static_lists.load(); }
+    /// Values carried: the static value plus the change around it (ChangedValues::carried).
+    long carried() const { return m_carried.load(); }
 
     /// Photons beyond the k nearest that a static photon's list keeps: as many as may be removed
     /// around it in a frame before the list cannot tell the frame's k nearest.
@@ -178,8 +206,8 @@ public:
 private:
     /// Value i, computed the first time.
     const Value& value(uint32_t i) const;
-    /// Value i as `m_reuse` has it, if it may be taken from there.
-    std::optional<Value> reused_value(uint32_t i) const;
+    /// Value i as `m_reuse` has it, as it is or `carried`, if it may be taken from there.
+    std::optional<Value> reused_value(uint32_t i, bool& carried) const;
     /// The ids of the k + wider_margin nearest photons to value i's photon (a map of its own),
     /// found the first time.
     const std::vector<uint32_t>& wider_nearest(uint32_t i) const;
@@ -200,7 +228,7 @@ private:
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;        // per value: empty, being written, ready
     mutable std::vector<std::vector<uint32_t>> m_wider;     // per value, without `reuse`: wider_nearest
     std::unique_ptr<std::atomic<uint8_t>[]> m_wider_state;  // and its state, as m_state
-    mutable std::atomic<long> m_computed = 0, m_reused = 0, m_from_static_lists = 0;
+    mutable std::atomic<long> m_computed = 0, m_reused = 0, m_from_static_lists = 0, m_carried = 0;
     PointIndex m_index;
 };
 

@@ -231,7 +231,6 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     out.global_static_ids.assign(composed.photons.size(), PointIndex::removed);
     for (size_t i = 0; i < composed.base_ids.size(); ++i)
         if (composed.base_ids[i] != PointIndex::removed) out.global_static_ids[composed.base_ids[i]] = uint32_t(i);
-    out.changed_global_points = changed_points(global.photons, composed);
     out.maps.global = PhotonMap(std::move(composed.photons), global_split.total, global.photons,
                                 std::move(composed.base_ids), std::move(composed.added_ids));
     out.maps.dynamic = PhotonMap(std::move(dynamic_photons), dynamic ? global_split.total : 0);

@@ -58,7 +58,6 @@ StaticPhotonPaths trace_static_photon_paths(const FrameContext& context, const P
 struct ComposedPhotons {
     TracedPhotons maps;
     std::vector<uint32_t> global_static_ids;  // per global photon: the static one it is, or PointIndex::removed (new)
-    std::vector<Vec3> changed_global_points;  // where static global photons were removed or new ones added
     long retraced_paths = 0;
     long caustic_retraced_paths = 0;           // of them caustic ones
     bool caustic_traced = false;               // the caustic map was traced whole: its targets moved
