@@ -72,6 +72,14 @@ PixelSums StaticFrame::sums(size_t pixel) const {
     return sums;
 }
 
+Rgb StaticFrame::direct(size_t pixel) const {
+    // The direct sum is sum 0 and the indirect one sum 1: whichever is stored comes first.
+    const KeptPixel& kept = m_pixels[pixel];
+    const uint32_t direct = kept.kept & 3, indirect = (kept.kept >> 2) & 3;
+    if (direct == stored || (direct == same_as_indirect && indirect == stored)) return read<Rgb>(values_of(pixel));
+    return {};
+}
+
 KeptLookUps StaticFrame::look_ups(size_t pixel) const {
     const KeptPixel& kept = m_pixels[pixel];
     if (kept.look_ups == 0) return {nullptr, nullptr, nullptr};
@@ -208,7 +216,7 @@ PixelSource::Shading PixelReuse::begin(int x, int y, size_t pixel, PixelSums& su
 }
 
 void PixelReuse::finish(size_t pixel, PixelSums& sums) {
-    if (m_work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.sums(pixel).direct;
+    if (m_work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.direct(pixel);
 }
 
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,

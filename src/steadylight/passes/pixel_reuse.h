@@ -88,6 +88,8 @@ public:
 
     const PixelTrace& trace(size_t pixel) const { return m_pixels[pixel].trace; }
     PixelSums sums(size_t pixel) const;
+    /// sums(pixel).direct, without unpacking the others.
+    Rgb direct(size_t pixel) const;
     KeptLookUps look_ups(size_t pixel) const;
     size_t pixel_count() const { return m_pixels.size(); }
     /// The memory it holds.

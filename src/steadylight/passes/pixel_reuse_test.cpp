@@ -219,8 +219,8 @@ TEST(StaticFrame, KeepsEverySumLookUpAndAlbedoOfAPixel) {
         PixelSums& s = sums[pixel == many];
         PixelSums unused;
         maker.begin(int(pixel), 0, pixel, unused);
-        s.direct = {0.5f, -0.0f, 3};
         s.indirect = {1, 2, float(pixel)};
+        s.direct = pixel == few ? s.indirect : Rgb{0.5f, -0.0f, 3};  // kept as the same, and stored
         s.specular = {0, 0, 1e-30f};
         s.extra[1] = s.indirect;
         s.extra[3] = {7, 8, 9};
@@ -244,6 +244,7 @@ TEST(StaticFrame, KeepsEverySumLookUpAndAlbedoOfAPixel) {
             << pixel;
         for (int e = 0; e < max_extra_layers; ++e) EXPECT_TRUE(same(back.extra[size_t(e)], s.extra[size_t(e)])) << e;
         EXPECT_EQ(back.covered, s.covered);
+        EXPECT_TRUE(same(kept.direct(pixel), s.direct)) << pixel;
     }
     const KeptLookUps few_look_ups = kept.look_ups(few);
     EXPECT_FALSE(kept.trace(few).flags & PixelRecorder::unkept);

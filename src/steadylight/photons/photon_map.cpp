@@ -104,9 +104,7 @@ bool PhotonMap::k_nearest_from_base(Vec3 p, int k, float max_radius, const Photo
     out.clear();
     size_t a = 0, b = 0;
     while (int(out.size()) < k && (a < kept.size() || b < added.size())) {
-        const bool from_kept = b == added.size() || (a < kept.size() && (kept[a].distance2 != added[b].distance2
-                                                                             ? kept[a].distance2 < added[b].distance2
-                                                                             : kept[a].index < added[b].index));
+        const bool from_kept = b == added.size() || (a < kept.size() && nearer_neighbour(kept[a], added[b]));
         out.push_back(from_kept ? kept[a++] : added[b++]);
     }
     if (complete) return true;

@@ -15,14 +15,6 @@ constexpr uint32_t leaf_size = 16;
 // Ranges this large build their two halves in parallel (the result does not depend on it).
 constexpr uint32_t parallel_build_size = 32 * 1024;
 
-/// Nearer first; equal distances by index, so every result is unique. (A function object, so
-/// that the heap and sort algorithms inline it.)
-constexpr struct {
-    bool operator()(const Neighbour& a, const Neighbour& b) const {
-        return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
-    }
-} nearer;
-
 /// The k best neighbours so far; once k are found, a max-heap with the farthest on top, and the
 /// search radius shrinks to the farthest one's.
 class BoundedHeap {
@@ -39,17 +31,17 @@ public:
             // Filling up: no order needed until the k-th arrives.
             m_items[m_count++] = candidate;
             if (m_count == m_k) {
-                std::make_heap(m_items, m_items + m_k, nearer);
+                std::make_heap(m_items, m_items + m_k, nearer_neighbour);
                 m_radius2 = m_items[0].distance2;
             }
-        } else if (nearer(candidate, m_items[0])) {
+        } else if (nearer_neighbour(candidate, m_items[0])) {
             replace_top(candidate);
             m_radius2 = m_items[0].distance2;
         }
     }
 
     /// Sorts the items nearest first.
-    void sort() { std::sort(m_items, m_items + m_count, nearer); }
+    void sort() { std::sort(m_items, m_items + m_count, nearer_neighbour); }
 
 private:
     /// Puts `item` in place of the farthest and sifts it down.
@@ -58,8 +50,8 @@ private:
         for (;;) {
             int child = 2 * i + 1;
             if (child >= m_k) break;
-            if (child + 1 < m_k && nearer(m_items[child], m_items[child + 1])) ++child;
-            if (!nearer(item, m_items[child])) break;
+            if (child + 1 < m_k && nearer_neighbour(m_items[child], m_items[child + 1])) ++child;
+            if (!nearer_neighbour(item, m_items[child])) break;
             m_items[i] = m_items[child];
             i = child;
         }
@@ -85,7 +77,7 @@ public:
     void offer(uint32_t index, float distance2) {
         if (distance2 > m_radius2) return;
         const Neighbour candidate{index, distance2};
-        if (!m_found || nearer(candidate, m_best)) m_best = candidate, m_radius2 = distance2, m_found = true;
+        if (!m_found || nearer_neighbour(candidate, m_best)) m_best = candidate, m_radius2 = distance2, m_found = true;
     }
 
 private:

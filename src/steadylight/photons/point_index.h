@@ -22,6 +22,14 @@ struct Neighbour {
     float distance2;
 };
 
+/// The order of every search's answer: nearer first; equal distances by index, so every result
+/// is unique. (A function object, so that the heap and sort algorithms inline it.)
+constexpr struct {
+    bool operator()(const Neighbour& a, const Neighbour& b) const {
+        return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
+    }
+} nearer_neighbour;
+
 class PointIndex {
 public:
     /// An id that a MappedIndex gives the points it leaves out.
