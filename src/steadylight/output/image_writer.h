@@ -1,5 +1,5 @@
 // Writing finished frames: linear multi-layer EXR (OpenEXR, half or float) and 8-bit sRGB PNG
-// (stb) through the view transform of view_transform.h. Each file is written under a temporary
+// (zlib) through the view transform of view_transform.h. Each file is written under a temporary
 // name in the same folder and renamed into place, so an interrupted run never leaves a truncated
 // image behind.
 #pragma once

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <utility>
 
 #include "steadylight/base/error.h"
 #include "steadylight/base/rng.h"
@@ -139,6 +140,35 @@ TEST(ImageWriter, PngWithAlphaIsRgbaAndWithoutRgb) {
     ASSERT_EQ(decoded.width, 5);
     for (int y = 0; y < 3; ++y)
         for (int x = 0; x < 5; ++x) EXPECT_EQ(decoded.rgba[size_t(y * 5 + x) * 4 + 3], x == 1 && y == 1 ? 255 : 0);
+}
+
+// The PNG's pixels are the view transform's bytes, every one: decoded by another decoder
+// (stb_image), RGB and RGBA, of sizes from one pixel up, with values all over the byte range
+// (the filtered bytes wrap around) and values from a few levels (the Paeth predictor's ties).
+TEST(ImageWriter, PngDecodesToTheEncodedBytes) {
+    Pcg32 rng(5);
+    const std::pair<int, int> sizes[] = {{1, 1}, {7, 5}, {61, 37}};
+    for (const auto& [width, height] : sizes) {
+        Image image(width, height), alpha(width, height);
+        const auto level = [&] { return float(rng.next_u32() % 3) / 2; };
+        for (size_t i = 0; i < image.pixels.size(); ++i)
+            image.pixels[i] = i % 2 ? Rgb{level(), level(), level()}
+                                    : Rgb{rng.next_float(), rng.next_float() * 0.1f, rng.next_float() * 2};
+        for (Rgb& pixel : alpha.pixels) pixel = Rgb{1, 1, 1} * (rng.next_float() < 0.5f ? 1.0f : rng.next_float());
+        const Image* const alphas[] = {nullptr, &alpha};
+        for (const Image* a : alphas) {
+            const std::vector<unsigned char> expected = encode_srgb8(image, {}, a);
+            const std::vector<unsigned char> png = encode_png(image, {}, a);
+            const DecodedImage decoded = decode_image(png.data(), png.size());
+            ASSERT_EQ(decoded.width, width);
+            ASSERT_EQ(decoded.height, height);
+            const size_t components = a ? 4 : 3;
+            for (size_t i = 0; i < size_t(width * height); ++i)
+                for (size_t c = 0; c < 4; ++c)
+                    ASSERT_EQ(decoded.rgba[i * 4 + c], c < components ? expected[i * components + c] : 255)
+                        << width << "x" << height << " pixel " << i << " channel " << c;
+        }
+    }
 }
 
 // Half layers hold only finite values: beyond 65504 a half is +inf (a compositor's blur would

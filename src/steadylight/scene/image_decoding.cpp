@@ -1,5 +1,5 @@
 // PNG through stb_image, built here for PNG alone (STBI_ONLY_PNG) and static (STB_IMAGE_STATIC)
-// so that it does not meet Debian's libstb, which is linked for stb_image_write. JPEG through
+// so that it does not meet Debian's libstb, whose stb_image_write the tests link. JPEG through
 // libjpeg-turbo: the stb_image of Debian 12 predates fixes of JPEG defects our fuzzing found
 // (Huffman tables of more than 256 codes written past their arrays, nothings/stb#1289; symbol
 // indices out of range in stbi__jpeg_huff_decode, nothings/stb#1291), which cannot be ruled out
