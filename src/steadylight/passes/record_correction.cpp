@@ -100,6 +100,9 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
         if (!same_side(photon, n)) continue;
         const float y = luminance(photon.power);
         const float offset = std::abs(dot(photon.p - p, n));
+        // Finer discs lie inside coarser ones, slab and all: once a level's kernel is 0, so is
+        // every finer one's, and their details gain exactly 0. Most photons lie in the coarsest
+        // disc alone (three quarters of its area).
         float coarser = 0;  // the next coarser level's kernel; 0 past the coarsest
         for (int l = levels - 1; l >= 0; --l) {
             const bool in_disc = offset <= slab_half_width(radius[l]);
@@ -107,6 +110,7 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
             const float weight = kernel - coarser;
             detail[l] += photon.power * weight;
             variance[l] += (y * weight) * (y * weight);
+            if (kernel == 0) break;
             coarser = kernel;
         }
     }
