@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -33,9 +34,22 @@ constexpr float sqrt_half = 0.70710678f;
 /// A hierarchical hash grid over spheres. A sphere of radius r lives at the level whose cells are
 /// the smallest power of two >= 2r, in every cell its bounding box overlaps (at most 8), so at each
 /// level in use the one cell containing a point lists every sphere that may contain that point.
+/// A cell keeps its spheres' centres beside their ids, with a radius of the caller's, so that a
+/// look-up's first test reads the cell's bytes, not the records'. Look-ups come in runs of nearby
+/// points (a tile's pixels), which mostly fall in the cells the last one found: each thread
+/// remembers the cell it found last per level, for the grid as it was then (its generation).
 class SphereGrid {
 public:
-    void insert(uint32_t id, Vec3 center, float radius) {
+    struct Entry {
+        Vec3 center;
+        float kept;  // the caller's radius, which the grid does not read
+        uint32_t id;
+    };
+
+    SphereGrid() : m_generation(next_generation()) {}
+
+    /// Indexes sphere `id` at `center` with radius `radius`, keeping `kept` beside it.
+    void insert(uint32_t id, Vec3 center, float radius, float kept) {
         int level = 0;
         std::frexp(2 * radius, &level);  // 2r = m 2^level, m in [0.5, 1): cells of 2^level >= 2r
         level = std::max(level, min_level);
@@ -43,25 +57,32 @@ public:
         const auto hi = cell_of(center + Vec3{radius, radius, radius}, level);
         for (int64_t z = lo[2]; z <= hi[2]; ++z)
             for (int64_t y = lo[1]; y <= hi[1]; ++y)
-                for (int64_t x = lo[0]; x <= hi[0]; ++x) m_cells[{level, x, y, z}].push_back(id);
+                for (int64_t x = lo[0]; x <= hi[0]; ++x) m_cells[{level, x, y, z}].push_back({center, kept, id});
         if (!std::binary_search(m_levels.begin(), m_levels.end(), level))
             m_levels.insert(std::upper_bound(m_levels.begin(), m_levels.end(), level), level);
+        m_generation = next_generation();
     }
 
-    /// Calls `f(id)` once for every sphere that may contain `p` (and perhaps a few more).
+    /// Calls `f(entry)` once for every sphere that may contain `p` (and perhaps a few more).
     template <class F>
     void for_each_candidate(Vec3 p, F&& f) const {
-        for (const int level : m_levels) {
-            const auto c = cell_of(p, level);
-            const auto it = m_cells.find({level, c[0], c[1], c[2]});
-            if (it == m_cells.end()) continue;
-            for (const uint32_t id : it->second) f(id);
+        for (size_t k = 0; k < m_levels.size(); ++k) {
+            const auto c = cell_of(p, m_levels[k]);
+            const Key key{m_levels[k], c[0], c[1], c[2]};
+            Memo& memo = memo_of(k);
+            if (memo.generation != m_generation || !(memo.key == key)) {
+                const auto it = m_cells.find(key);
+                memo = {m_generation, key, it == m_cells.end() ? nullptr : &it->second};
+            }
+            if (memo.cell)
+                for (const Entry& entry : *memo.cell) f(entry);
         }
     }
 
     void clear() {
         m_cells.clear();
         m_levels.clear();
+        m_generation = next_generation();
     }
 
 private:
@@ -78,6 +99,26 @@ private:
             return size_t(hash_ids(uint64_t(int64_t(k.level)), uint64_t(k.x), uint64_t(k.y), uint64_t(k.z)));
         }
     };
+    /// The cell a thread found last at one level of a grid, as the grid was (its generation).
+    struct Memo {
+        uint64_t generation = 0;  // none: generations start at 1
+        Key key{};
+        const std::vector<Entry>* cell = nullptr;
+    };
+
+    /// Every grid and every change to one gets a new generation, so that a memo never outlives
+    /// what it points into.
+    static uint64_t next_generation() {
+        static std::atomic<uint64_t> last = 0;
+        return ++last;
+    }
+    /// This thread's memo for level k of this grid: a few grids' (a frame's caches are read in
+    /// turns) by their generation, eight levels each (further levels share the last slot).
+    Memo& memo_of(size_t k) const {
+        constexpr size_t grids = 4, levels = 8;
+        thread_local std::array<Memo, grids * levels> memos;
+        return memos[(m_generation % grids) * levels + std::min(k, levels - 1)];
+    }
 
     static std::array<int64_t, 3> cell_of(Vec3 p, int level) {
         const float inverse_size = std::ldexp(1.0f, -level);  // a power of two: exact, monotonic
@@ -85,8 +126,9 @@ private:
                 int64_t(std::floor(p.z * inverse_size))};
     }
 
-    std::unordered_map<Key, std::vector<uint32_t>, KeyHash> m_cells;
+    std::unordered_map<Key, std::vector<Entry>, KeyHash> m_cells;
     std::vector<int> m_levels;  // sorted
+    uint64_t m_generation;
 };
 
 /// Ward's weight of `record` at (p, n): 1 / (|p - p_i| / R_i + sqrt(1 - n . n_i)), infinite at the
@@ -132,12 +174,13 @@ const std::vector<WeightedRecord>& usable_records(const SphereGrid& index, const
                                                   float accuracy, Vec3 p, Vec3 n) {
     thread_local std::vector<WeightedRecord> used;
     used.clear();
-    index.for_each_candidate(p, [&](uint32_t id) {
-        // w_i > 1 / a needs |p - p_i| < a R_i: most candidates fail this cheap test.
-        const float reach = accuracy * records[id].radius;
-        if (length2(p - records[id].p) >= reach * reach) return;
-        const float weight = ward_weight(records[id], p, n);
-        if (weight > 1 / accuracy) used.push_back({id, weight});
+    index.for_each_candidate(p, [&](const SphereGrid::Entry& candidate) {
+        // w_i > 1 / a needs |p - p_i| < a R_i: most candidates fail this cheap test (the grid
+        // keeps each record's p_i and R_i).
+        const float reach = accuracy * candidate.kept;
+        if (length2(p - candidate.center) >= reach * reach) return;
+        const float weight = ward_weight(records[candidate.id], p, n);
+        if (weight > 1 / accuracy) used.push_back({candidate.id, weight});
     });
     std::sort(used.begin(), used.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
     return used;
@@ -158,7 +201,7 @@ void IrradianceCache::insert(const IrradianceRecord& record) {
     SL_CHECK(record.radius > 0 && std::isfinite(record.radius));
     // w_i > 1 / a needs |p - p_i| < a R_i: that is the sphere to index.
     m_index->insert(uint32_t(m_records.size()), record.p,
-                    max_reach_scale * m_settings.accuracy * record.radius * index_padding);
+                    max_reach_scale * m_settings.accuracy * record.radius * index_padding, record.radius);
     m_records.push_back(record);
 }
 
@@ -184,8 +227,9 @@ std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scal
 
 bool IrradianceCache::covers(Vec3 p, Vec3 n) const {
     bool found = false;
-    m_index->for_each_candidate(
-        p, [&](uint32_t id) { found = found || ward_weight(m_records[id], p, n) > 1 / m_settings.accuracy; });
+    m_index->for_each_candidate(p, [&](const SphereGrid::Entry& candidate) {
+        found = found || ward_weight(m_records[candidate.id], p, n) > 1 / m_settings.accuracy;
+    });
     return found;
 }
 
@@ -194,7 +238,7 @@ void IrradianceCache::clamp_radii_to_neighbours() {
     // which needs p_j inside that sphere.
     SphereGrid spheres;
     for (size_t i = 0; i < m_records.size(); ++i)
-        spheres.insert(uint32_t(i), m_records[i].p, m_records[i].radius * index_padding);
+        spheres.insert(uint32_t(i), m_records[i].p, m_records[i].radius * index_padding, m_records[i].radius);
 
     // Lower each radius against the old radii of its neighbours. One such pass reaches the fixed
     // point (R_i = min_j R_j + |p_i - p_j| already satisfies the triangle inequality), and a min
@@ -202,7 +246,8 @@ void IrradianceCache::clamp_radii_to_neighbours() {
     std::vector<float> radius(m_records.size());
     for (size_t i = 0; i < m_records.size(); ++i) radius[i] = m_records[i].radius;
     for (size_t j = 0; j < m_records.size(); ++j) {
-        spheres.for_each_candidate(m_records[j].p, [&](uint32_t i) {
+        spheres.for_each_candidate(m_records[j].p, [&](const SphereGrid::Entry& candidate) {
+            const uint32_t i = candidate.id;
             radius[i] = std::min(radius[i], m_records[j].radius + length(m_records[i].p - m_records[j].p));
         });
     }
@@ -211,7 +256,8 @@ void IrradianceCache::clamp_radii_to_neighbours() {
     m_index->clear();
     for (size_t i = 0; i < m_records.size(); ++i) {
         m_records[i].radius = radius[i];
-        m_index->insert(uint32_t(i), m_records[i].p, max_reach_scale * m_settings.accuracy * radius[i] * index_padding);
+        m_index->insert(uint32_t(i), m_records[i].p, max_reach_scale * m_settings.accuracy * radius[i] * index_padding,
+                        radius[i]);
     }
 }
 
