@@ -112,10 +112,10 @@ private:
         static std::atomic<uint64_t> last = 0;
         return ++last;
     }
-    /// This thread's memo for level k of this grid: a few grids' (a frame's caches are read in
+    /// This thread's memo for level k of this grid: sixteen grids' (a frame's caches are read in
     /// turns) by their generation, eight levels each (further levels share the last slot).
     Memo& memo_of(size_t k) const {
-        constexpr size_t grids = 4, levels = 8;
+        constexpr size_t grids = 16, levels = 8;
         thread_local std::array<Memo, grids * levels> memos;
         return memos[(m_generation % grids) * levels + std::min(k, levels - 1)];
     }

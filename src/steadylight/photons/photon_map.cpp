@@ -177,14 +177,34 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
     SL_CHECK(!m_reuse || m_reuse->static_ids.size() == global.size());
     const std::vector<Photon>& photons = global.photons();
     std::vector<Vec3> positions;
+    const auto add_carrier = [&](uint32_t photon, uint64_t hash, uint32_t static_carrier) {
+        m_photon.push_back(photon);
+        m_hash.push_back(hash);
+        m_n.push_back(photons[photon].n);
+        positions.push_back(photons[photon].p);
+        if (m_reuse) m_static_carrier.push_back(static_carrier);
+    };
+    // A photon kept from the static map carries a value where its static photon does (the same
+    // bits, the same hash): found by walking the static carriers along, as the kept photons come
+    // in the static map's order (else searched for), and its hash not computed again.
+    const IrradiancePhotons* from = m_reuse ? m_reuse->values : nullptr;
+    size_t next_static = 0;  // the first static carrier whose photon is not below the last static id
     for (size_t i = 0; i < photons.size(); ++i) {
+        const uint32_t static_id = m_reuse ? m_reuse->static_ids[i] : PointIndex::removed;
+        if (static_id != PointIndex::removed) {
+            const std::vector<uint32_t>& carriers = from->m_photon;
+            if (next_static > 0 && carriers[next_static - 1] >= static_id)  // out of order: search
+                next_static = size_t(std::lower_bound(carriers.begin(), carriers.end(), static_id) - carriers.begin());
+            while (next_static < carriers.size() && carriers[next_static] < static_id) ++next_static;
+            if (next_static < carriers.size() && carriers[next_static] == static_id) {
+                add_carrier(uint32_t(i), from->m_hash[next_static], uint32_t(next_static));
+                ++next_static;
+            }
+            continue;
+        }
         // The photon's own hash: the same photon in the static map and in a frame's.
         const uint64_t hash = hash_bits(photons[i].p, photons[i].wi);
-        if (hash % uint64_t(stride) != 0) continue;
-        m_photon.push_back(uint32_t(i));
-        m_hash.push_back(hash);
-        m_n.push_back(photons[i].n);
-        positions.push_back(photons[i].p);
+        if (hash % uint64_t(stride) == 0) add_carrier(uint32_t(i), hash, PointIndex::removed);
     }
     m_values.resize(m_photon.size());
     m_state = std::make_unique<std::atomic<uint8_t>[]>(m_photon.size());  // value-initialised: all empty
@@ -195,21 +215,12 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
     m_index = PointIndex(positions);
 }
 
-std::optional<uint32_t> IrradiancePhotons::carrier(uint32_t photon) const {
-    const auto it = std::lower_bound(m_photon.begin(), m_photon.end(), photon);
-    if (it == m_photon.end() || *it != photon) return std::nullopt;
-    return uint32_t(it - m_photon.begin());
-}
-
 std::optional<IrradiancePhotons::Value> IrradiancePhotons::reused_value(uint32_t i, bool& carried) const {
     carried = false;
     if (!m_reuse) return std::nullopt;
-    const uint32_t static_id = m_reuse->static_ids[m_photon[i]];
-    if (static_id == PointIndex::removed) return std::nullopt;  // a new photon
-    const IrradiancePhotons& from = *m_reuse->values;
-    const std::optional<uint32_t> j = from.carrier(static_id);
-    SL_CHECK(j);  // the same bits, the same hash
-    Value value = from.value(*j);
+    const uint32_t j = m_static_carrier[i];
+    if (j == PointIndex::removed) return std::nullopt;  // a new photon
+    Value value = m_reuse->values->value(j);
     const Photon& photon = m_global->photons()[m_photon[i]];
     // A dynamic object its probes may meet changes the disc.
     const float extent = coverage_probe_extent(photon.p, value.radius);
@@ -261,13 +272,11 @@ const std::vector<uint32_t>& IrradiancePhotons::wider_nearest(uint32_t i) const 
 
 bool IrradiancePhotons::nearest_from_static(uint32_t i, std::vector<Neighbour>& out) const {
     if (!m_reuse || m_reuse->changed_values != ChangedValues::carried) return false;
-    const uint32_t static_id = m_reuse->static_ids[m_photon[i]];
-    if (static_id == PointIndex::removed) return false;  // a new photon
+    const uint32_t j = m_static_carrier[i];
+    if (j == PointIndex::removed) return false;  // a new photon
     const IrradiancePhotons& from = *m_reuse->values;
-    const std::optional<uint32_t> j = from.carrier(static_id);
-    SL_CHECK(j);  // the same bits, the same hash
     return m_global->k_nearest_from_base(m_global->photons()[m_photon[i]].p, m_settings.k, m_settings.max_radius,
-                                         *from.m_global, from.wider_nearest(*j), m_settings.k + wider_margin,
+                                         *from.m_global, from.wider_nearest(j), m_settings.k + wider_margin,
                                          m_reuse->frame_ids, out);
 }
 

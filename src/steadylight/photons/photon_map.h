@@ -214,8 +214,6 @@ private:
     /// The k nearest photons to value i's photon from the static photon's wider_nearest list, if
     /// they tell them.
     bool nearest_from_static(uint32_t i, std::vector<Neighbour>& out) const;
-    /// The value index of photon `photon`, if it carries one.
-    std::optional<uint32_t> carrier(uint32_t photon) const;
 
     const PhotonMap* m_global;
     DensitySettings m_settings;
@@ -224,6 +222,8 @@ private:
     std::vector<uint32_t> m_photon;  // per value: its photon, ascending
     std::vector<uint64_t> m_hash;    // and the photon's hash (the probes' turn)
     std::vector<Vec3> m_n;
+    std::vector<uint32_t>
+        m_static_carrier;  // with `reuse`, per value: its photon's static value, or PointIndex::removed
     mutable std::vector<Value> m_values;
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;        // per value: empty, being written, ready
     mutable std::vector<std::vector<uint32_t>> m_wider;     // per value, without `reuse`: wider_nearest
