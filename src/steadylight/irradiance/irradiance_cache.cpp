@@ -22,7 +22,7 @@ namespace {
 // Widens indexed spheres slightly so float rounding in the weight test never finds a record
 // outside the sphere it was indexed with.
 constexpr float index_padding = 1.0001f;
-/// The index covers records out to this multiple of their reach, for relaxed look-ups.
+/// Relaxed look-ups let records reach up to this multiple of their reach.
 constexpr float max_reach_scale = 2.0f;
 
 // Ward's test against records "in front of" p (Ward, Rubinstein & Clear 1988): tolerance
@@ -188,7 +188,22 @@ const std::vector<WeightedRecord>& usable_records(const SphereGrid& index, const
 
 }  // namespace
 
-struct IrradianceCache::Index : SphereGrid {};
+/// The records' spheres of reach twice: as far as a look-up reaches, and as far as a relaxed one
+/// does. A cell holds records whose spheres overlap it, most of which do not reach a given point
+/// in it; cells sized for the look-ups' own reach hold a quarter as many on a surface.
+struct IrradianceCache::Index {
+    SphereGrid reach, relaxed_reach;
+
+    void insert(uint32_t id, const IrradianceRecord& record, float accuracy) {
+        reach.insert(id, record.p, accuracy * record.radius * index_padding, record.radius);
+        relaxed_reach.insert(id, record.p, max_reach_scale * accuracy * record.radius * index_padding, record.radius);
+    }
+    const SphereGrid& for_scale(float reach_scale) const { return reach_scale <= 1 ? reach : relaxed_reach; }
+    void clear() {
+        reach.clear();
+        relaxed_reach.clear();
+    }
+};
 
 IrradianceCache::IrradianceCache(CacheSettings settings) : m_settings(settings), m_index(std::make_unique<Index>()) {
     SL_CHECK(settings.accuracy > 0);
@@ -200,14 +215,14 @@ IrradianceCache& IrradianceCache::operator=(IrradianceCache&&) noexcept = defaul
 void IrradianceCache::insert(const IrradianceRecord& record) {
     SL_CHECK(record.radius > 0 && std::isfinite(record.radius));
     // w_i > 1 / a needs |p - p_i| < a R_i: that is the sphere to index.
-    m_index->insert(uint32_t(m_records.size()), record.p,
-                    max_reach_scale * m_settings.accuracy * record.radius * index_padding, record.radius);
+    m_index->insert(uint32_t(m_records.size()), record, m_settings.accuracy);
     m_records.push_back(record);
 }
 
 std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scale) const {
-    const float accuracy = m_settings.accuracy * std::clamp(reach_scale, 1.0f, max_reach_scale);
-    const std::vector<WeightedRecord>& used = usable_records(*m_index, m_records, accuracy, p, n);
+    const float scale = std::clamp(reach_scale, 1.0f, max_reach_scale);
+    const std::vector<WeightedRecord>& used =
+        usable_records(m_index->for_scale(scale), m_records, m_settings.accuracy * scale, p, n);
     if (used.empty()) return std::nullopt;
 
     // Scale weights by the largest, so that at a record's own position (infinite weight) only
@@ -227,7 +242,7 @@ std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scal
 
 bool IrradianceCache::covers(Vec3 p, Vec3 n) const {
     bool found = false;
-    m_index->for_each_candidate(p, [&](const SphereGrid::Entry& candidate) {
+    m_index->reach.for_each_candidate(p, [&](const SphereGrid::Entry& candidate) {
         found = found || ward_weight(m_records[candidate.id], p, n) > 1 / m_settings.accuracy;
     });
     return found;
@@ -256,8 +271,7 @@ void IrradianceCache::clamp_radii_to_neighbours() {
     m_index->clear();
     for (size_t i = 0; i < m_records.size(); ++i) {
         m_records[i].radius = radius[i];
-        m_index->insert(uint32_t(i), m_records[i].p, max_reach_scale * m_settings.accuracy * radius[i] * index_padding,
-                        radius[i]);
+        m_index->insert(uint32_t(i), m_records[i], m_settings.accuracy);
     }
 }
 
