@@ -205,7 +205,7 @@ struct IrradianceCache::Index {
     }
 };
 
-IrradianceCache::IrradianceCache(CacheSettings settings) : m_settings(settings), m_index(std::make_unique<Index>()) {
+IrradianceCache::IrradianceCache(CacheSettings settings) : m_settings(settings), m_index(std::make_shared<Index>()) {
     SL_CHECK(settings.accuracy > 0);
 }
 IrradianceCache::~IrradianceCache() = default;
@@ -214,9 +214,21 @@ IrradianceCache& IrradianceCache::operator=(IrradianceCache&&) noexcept = defaul
 
 void IrradianceCache::insert(const IrradianceRecord& record) {
     SL_CHECK(record.radius > 0 && std::isfinite(record.radius));
+    SL_CHECK_EQ(m_index.use_count(), 1);  // not shared with_irradiance
     // w_i > 1 / a needs |p - p_i| < a R_i: that is the sphere to index.
     m_index->insert(uint32_t(m_records.size()), record, m_settings.accuracy);
     m_records.push_back(record);
+}
+
+IrradianceCache IrradianceCache::with_irradiance(std::vector<IrradianceRecord> records) const {
+    SL_CHECK_EQ(records.size(), m_records.size());
+    for (size_t i = 0; i < records.size(); ++i)
+        SL_CHECK(records[i].p == m_records[i].p && records[i].n == m_records[i].n &&
+                 records[i].radius == m_records[i].radius);
+    IrradianceCache out(m_settings);
+    out.m_records = std::move(records);
+    out.m_index = m_index;
+    return out;
 }
 
 std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scale) const {
@@ -268,6 +280,7 @@ void IrradianceCache::clamp_radii_to_neighbours() {
     }
 
     // Store the new radii and re-index the records' (now smaller) spheres of validity.
+    SL_CHECK_EQ(m_index.use_count(), 1);  // not shared with_irradiance
     m_index->clear();
     for (size_t i = 0; i < m_records.size(); ++i) {
         m_records[i].radius = radius[i];

@@ -32,8 +32,14 @@ public:
     IrradianceCache(IrradianceCache&&) noexcept;
     IrradianceCache& operator=(IrradianceCache&&) noexcept;
 
-    /// Adds a record; its radius must already be clamped (see clamp_radius).
+    /// Adds a record; its radius must already be clamped (see clamp_radius). Not on a cache
+    /// made by with_irradiance (nor on the one it was made from).
     void insert(const IrradianceRecord& record);
+
+    /// This cache's records with other irradiance: `records` are this cache's, in order, with
+    /// their E (and nothing that places them: p, n, radius) changed. The two share the index,
+    /// as L_t's correction of the static cache does every frame, without indexing it again.
+    IrradianceCache with_irradiance(std::vector<IrradianceRecord> records) const;
 
     /// \brief Irradiance at `p` with unit normal `n`, interpolated from the records whose weight
     /// exceeds 1 / accuracy, with gradient extrapolation. std::nullopt when no record qualifies.
@@ -55,7 +61,7 @@ private:
     struct Index;
     CacheSettings m_settings;
     std::vector<IrradianceRecord> m_records;
-    std::unique_ptr<Index> m_index;
+    std::shared_ptr<Index> m_index;
 };
 
 /// The validity radius from a gather: the harmonic mean distance clamped to

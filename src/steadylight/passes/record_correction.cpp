@@ -140,9 +140,7 @@ IrradianceCache correct_static_cache(const IrradianceCache& static_cache, const 
             }
         });
     }
-    IrradianceCache corrected_cache(static_cache.settings());
-    for (const IrradianceRecord& r : records) corrected_cache.insert(r);
-    return corrected_cache;
+    return static_cache.with_irradiance(std::move(records));
 }
 
 }  // namespace steadylight
