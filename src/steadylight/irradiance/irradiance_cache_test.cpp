@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -236,6 +237,37 @@ TEST(IrradianceCache, IndexFindsTheSameRecordsAsBruteForce) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR((*got)[c], (*want)[c], 1e-4f * (1 + (*want)[c]));
     }
     EXPECT_GT(covered, 1000);  // the test looks at many overlapping records, not only misses
+    // Relaxed look-ups (records reaching twice as far) read an index of their own.
+    int covered_relaxed = 0;
+    for (const IrradianceRecord& q : queries) {
+        const std::optional<Rgb> want = brute_force_interpolate(records, 2 * accuracy, q.p, q.n);
+        const std::optional<Rgb> got = cache.interpolate(q.p, q.n, 2);
+        ASSERT_EQ(got.has_value(), want.has_value());
+        if (!want) continue;
+        ++covered_relaxed;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR((*got)[c], (*want)[c], 1e-4f * (1 + (*want)[c]));
+    }
+    EXPECT_GT(covered_relaxed, covered);
+}
+
+// L_t's corrected cache: the static records with other irradiance, on the static cache's index,
+// answers as a cache built over them, bit for bit, also once the static cache is gone.
+TEST(IrradianceCache, CacheWithOtherIrradianceAnswersAsOneBuiltOverItsRecords) {
+    const std::vector<IrradianceRecord> records = random_records(2000, 1);
+    std::vector<IrradianceRecord> changed = records;
+    for (size_t i = 0; i < changed.size(); i += 3) changed[i].E = changed[i].E * 0.5f;
+    auto base = std::make_unique<IrradianceCache>(cache_of(records, 0.5f));
+    const IrradianceCache corrected = base->with_irradiance(changed);
+    base.reset();
+    const IrradianceCache built = cache_of(changed, 0.5f);
+    int covered = 0;
+    for (const IrradianceRecord& q : random_records(2000, 2))
+        for (const float reach : {1.0f, 2.0f}) {
+            const std::optional<Rgb> got = corrected.interpolate(q.p, q.n, reach);
+            ASSERT_EQ(got, built.interpolate(q.p, q.n, reach));
+            covered += got.has_value();
+        }
+    EXPECT_GT(covered, 1000);
 }
 
 TEST(IrradianceCache, NeighbourClampingMatchesBruteForce) {
