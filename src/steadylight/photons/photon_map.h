@@ -222,8 +222,8 @@ private:
     std::vector<uint32_t> m_photon;  // per value: its photon, ascending
     std::vector<uint64_t> m_hash;    // and the photon's hash (the probes' turn)
     std::vector<Vec3> m_n;
-    std::vector<uint32_t>
-        m_static_carrier;  // with `reuse`, per value: its photon's static value, or PointIndex::removed
+    // With `reuse`, per value: the static value its photon carries, or PointIndex::removed.
+    std::vector<uint32_t> m_static_carrier;
     mutable std::vector<Value> m_values;
     std::unique_ptr<std::atomic<uint8_t>[]> m_state;        // per value: empty, being written, ready
     mutable std::vector<std::vector<uint32_t>> m_wider;     // per value, without `reuse`: wider_nearest
