@@ -144,20 +144,30 @@ float ward_weight(const IrradianceRecord& record, Vec3 p, Vec3 n) {
     return error > 0 ? 1 / error : infinity;
 }
 
-/// The record's irradiance carried to (p, n) by its gradients. Near contact geometry (a crease
-/// where a wall meets the floor, the foot of a ball) translational gradients grow like
-/// 1 / (nearest distance), and a record carries them far past where they hold (dark and light
-/// specks along creases: docs/notes/truth-gradient-specks.md). Over its radius a record's
+/// How much of record's translational gradient extrapolate() applies, per channel. Near contact
+/// geometry (a crease where a wall meets the floor, the foot of a ball) translational gradients
+/// grow like 1 / (nearest distance), and a record carries them far past where they hold (dark and
+/// light specks along creases: docs/notes/truth-gradient-specks.md). Over its radius a record's
 /// translational change may be at most its own E (Tabellion and Lamorlette 2004 limit the radius
 /// to R <= E / |grad E|; here the radius also serves the spacing and neighbour clamps, so the
-/// gradient is scaled to E / R instead), and the whole change stays within [0, 2 E].
-Rgb extrapolate(const IrradianceRecord& record, Vec3 p, Vec3 n) {
+/// gradient is scaled to E / R instead). A function of the record alone, kept beside it: a
+/// look-up would otherwise take three square roots and divisions per record it uses.
+std::array<float, 3> gradient_scales(const IrradianceRecord& record) {
+    std::array<float, 3> scales;
+    for (int c = 0; c < 3; ++c) {
+        const float change_over_radius = length(record.translational_gradient[size_t(c)]) * record.radius;
+        scales[size_t(c)] = change_over_radius > record.E[c] ? record.E[c] / change_over_radius : 1.0f;
+    }
+    return scales;
+}
+
+/// The record's irradiance carried to (p, n) by its gradients, the translational one scaled by
+/// `scales` (gradient_scales), the whole change within [0, 2 E].
+Rgb extrapolate(const IrradianceRecord& record, const std::array<float, 3>& scales, Vec3 p, Vec3 n) {
     const Vec3 turn = cross(record.n, n), move = p - record.p;
     const auto channel = [&](int c) {
-        const Vec3 gradient = record.translational_gradient[c];
-        const float change_over_radius = length(gradient) * record.radius;
-        const float scale = change_over_radius > record.E[c] ? record.E[c] / change_over_radius : 1.0f;
-        const float change = dot(turn, record.rotational_gradient[c]) + dot(move, gradient) * scale;
+        const float change = dot(turn, record.rotational_gradient[size_t(c)]) +
+                             dot(move, record.translational_gradient[size_t(c)]) * scales[size_t(c)];
         return record.E[c] + std::clamp(change, -record.E[c], record.E[c]);
     };
     return {channel(0), channel(1), channel(2)};
@@ -205,7 +215,9 @@ struct IrradianceCache::Index {
     }
 };
 
-IrradianceCache::IrradianceCache(CacheSettings settings) : m_settings(settings), m_index(std::make_shared<Index>()) {
+IrradianceCache::IrradianceCache(CacheSettings settings) : IrradianceCache(settings, std::make_shared<Index>()) {}
+IrradianceCache::IrradianceCache(CacheSettings settings, std::shared_ptr<Index> index)
+    : m_settings(settings), m_index(std::move(index)) {
     SL_CHECK(settings.accuracy > 0);
 }
 IrradianceCache::~IrradianceCache() = default;
@@ -218,16 +230,21 @@ void IrradianceCache::insert(const IrradianceRecord& record) {
     // w_i > 1 / a needs |p - p_i| < a R_i: that is the sphere to index.
     m_index->insert(uint32_t(m_records.size()), record, m_settings.accuracy);
     m_records.push_back(record);
+    m_gradient_scales.emplace_back();
+    set_derived(m_records.size() - 1);
 }
+
+void IrradianceCache::set_derived(size_t i) { m_gradient_scales[i] = gradient_scales(m_records[i]); }
 
 IrradianceCache IrradianceCache::with_irradiance(std::vector<IrradianceRecord> records) const {
     SL_CHECK_EQ(records.size(), m_records.size());
     for (size_t i = 0; i < records.size(); ++i)
         SL_CHECK(records[i].p == m_records[i].p && records[i].n == m_records[i].n &&
                  records[i].radius == m_records[i].radius);
-    IrradianceCache out(m_settings);
+    IrradianceCache out(m_settings, m_index);
     out.m_records = std::move(records);
-    out.m_index = m_index;
+    out.m_gradient_scales.resize(out.m_records.size());
+    for (size_t i = 0; i < out.m_records.size(); ++i) out.set_derived(i);
     return out;
 }
 
@@ -246,7 +263,7 @@ std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scal
     for (const WeightedRecord& r : used) {
         const float weight = max_weight == infinity ? (r.weight == infinity ? 1.0f : 0.0f) : r.weight / max_weight;
         if (weight == 0) continue;
-        sum += extrapolate(m_records[r.id], p, n) * weight;
+        sum += extrapolate(m_records[r.id], m_gradient_scales[r.id], p, n) * weight;
         weight_sum += weight;
     }
     return sum / weight_sum;
@@ -284,6 +301,7 @@ void IrradianceCache::clamp_radii_to_neighbours() {
     m_index->clear();
     for (size_t i = 0; i < m_records.size(); ++i) {
         m_records[i].radius = radius[i];
+        set_derived(i);
         m_index->insert(uint32_t(i), m_records[i], m_settings.accuracy);
     }
 }

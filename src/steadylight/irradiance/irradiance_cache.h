@@ -6,6 +6,7 @@
 // between parallel phases, in a fixed order, so results never depend on thread count).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -59,8 +60,13 @@ public:
 
 private:
     struct Index;
+    IrradianceCache(CacheSettings settings, std::shared_ptr<Index> index);
+    /// Keeps what a look-up needs of record i beside it (m_gradient_scales).
+    void set_derived(size_t i);
+
     CacheSettings m_settings;
     std::vector<IrradianceRecord> m_records;
+    std::vector<std::array<float, 3>> m_gradient_scales;  // per record: gradient_scales()
     std::shared_ptr<Index> m_index;
 };
 
