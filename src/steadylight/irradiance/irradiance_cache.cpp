@@ -36,8 +36,8 @@ constexpr float sqrt_half = 0.70710678f;
 /// level in use the one cell containing a point lists every sphere that may contain that point.
 /// A cell keeps its spheres' centres beside their ids, with a radius of the caller's, so that a
 /// look-up's first test reads the cell's bytes, not the records'. Look-ups come in runs of nearby
-/// points (a tile's pixels), which mostly fall in the cells the last one found: each thread
-/// remembers the cell it found last per level, for the grid as it was then (its generation).
+/// points (a tile's pixels), which mostly fall in cells found a moment before: each thread
+/// remembers the last eight cells it found per level, for the grid as it was then (its generation).
 class SphereGrid {
 public:
     struct Entry {
@@ -69,13 +69,8 @@ public:
         for (size_t k = 0; k < m_levels.size(); ++k) {
             const auto c = cell_of(p, m_levels[k]);
             const Key key{m_levels[k], c[0], c[1], c[2]};
-            Memo& memo = memo_of(k);
-            if (memo.generation != m_generation || !(memo.key == key)) {
-                const auto it = m_cells.find(key);
-                memo = {m_generation, key, it == m_cells.end() ? nullptr : &it->second};
-            }
-            if (memo.cell)
-                for (const Entry& entry : *memo.cell) f(entry);
+            if (const std::vector<Entry>* cell = memo_of(k).cell(*this, key))
+                for (const Entry& entry : *cell) f(entry);
         }
     }
 
@@ -99,11 +94,31 @@ private:
             return size_t(hash_ids(uint64_t(int64_t(k.level)), uint64_t(k.x), uint64_t(k.y), uint64_t(k.z)));
         }
     };
-    /// The cell a thread found last at one level of a grid, as the grid was (its generation).
-    struct Memo {
-        uint64_t generation = 0;  // none: generations start at 1
-        Key key{};
-        const std::vector<Entry>* cell = nullptr;
+    /// The cells a thread found last at one level of a grid, as the grid was (its generation).
+    /// A tile's row of pixels crosses several cells of the finest level, and the rows below it
+    /// cross the same ones: at 1280x960, where a cell spans about four pixels, a frame's look-ups
+    /// again missed four kept cells at nearly every look-up, and eight at one in twenty.
+    class Memo {
+    public:
+        /// Cell `key` of `grid` (nullptr: none), from the memo or found and remembered.
+        const std::vector<Entry>* cell(const SphereGrid& grid, const Key& key) {
+            if (m_generation != grid.m_generation) m_generation = grid.m_generation, m_kept = 0;
+            for (int i = 0; i < m_kept; ++i)
+                if (m_keys[size_t(i)] == key) return m_cells[size_t(i)];
+            const auto it = grid.m_cells.find(key);
+            const std::vector<Entry>* cell = it == grid.m_cells.end() ? nullptr : &it->second;
+            const size_t slot = m_kept < size ? size_t(m_kept++) : m_next++ % size;
+            m_keys[slot] = key, m_cells[slot] = cell;
+            return cell;
+        }
+
+    private:
+        static constexpr int size = 8;
+        uint64_t m_generation = 0;  // none: generations start at 1
+        int m_kept = 0;
+        size_t m_next = 0;  // the slot to replace next once all are kept
+        std::array<Key, size> m_keys;
+        std::array<const std::vector<Entry>*, size> m_cells;
     };
 
     /// Every grid and every change to one gets a new generation, so that a memo never outlives
