@@ -22,8 +22,11 @@ namespace {
 std::vector<uint8_t> caustic_changes(const Camera& camera, const FramePhotons::CausticChanges& changes,
                                      const DensitySettings& estimate) {
     std::vector<uint8_t> mask(size_t(camera.width) * size_t(camera.height), changes.everywhere ? 1 : 0);
-    if (!changes.everywhere)
-        for (const Vec3 p : changes.points) mark_sphere_on_screen(camera, {p, estimate.max_radius * 1.001f}, mask);
+    if (!changes.everywhere) {
+        std::vector<BoundingSphere> reach;
+        for (const Vec3 p : changes.points) reach.push_back({p, estimate.max_radius * 1.001f});
+        mark_spheres_on_screen(camera, reach, mask);
+    }
     return mask;
 }
 
@@ -36,16 +39,20 @@ std::vector<uint8_t> indirect_changes(const Camera& camera, const IrradianceCach
                                       const LocalizedSettings& localized) {
     std::vector<uint8_t> mask(size_t(camera.width) * size_t(camera.height), 0);
     const float reach_per_radius = 2 * static_cache.settings().accuracy * 1.001f;
-    for (size_t i = 0; i < changed_records.size(); ++i) {
-        if (!changed_records[i]) continue;
-        const IrradianceRecord& r = static_cache.records()[i];
-        mark_sphere_on_screen(camera, {r.p, r.radius * reach_per_radius}, mask);
-    }
+    std::vector<BoundingSphere> reach;
+    for (size_t i = 0; i < changed_records.size(); ++i)
+        if (changed_records[i]) {
+            const IrradianceRecord& r = static_cache.records()[i];
+            reach.push_back({r.p, r.radius * reach_per_radius});
+        }
+    mark_spheres_on_screen(camera, reach, mask);  // FrameChanges::records
     if (!influence.values.empty())
-        for (int y = 0; y < camera.height; ++y)
-            for (int x = 0; x < camera.width; ++x)
-                if (blend_weight(influence.at(x, y), localized) > 0)
-                    mask[size_t(y) * size_t(camera.width) + size_t(x)] |= FrameChanges::blend;
+        parallel_for_chunks(camera.height, 16, [&](long begin, long end) {
+            for (int y = int(begin); y < int(end); ++y)
+                for (int x = 0; x < camera.width; ++x)
+                    if (blend_weight(influence.at(x, y), localized) > 0)
+                        mask[size_t(y) * size_t(camera.width) + size_t(x)] |= FrameChanges::blend;
+        });
     return mask;
 }
 

@@ -219,19 +219,30 @@ void PixelReuse::finish(size_t pixel, PixelSums& sums) {
     if (m_work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.direct(pixel);
 }
 
-void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
-                           Outline outline) {
-    if (sphere.empty()) return;
+namespace {
+
+/// Where a sphere lies on the screen: the pixels whose rays may pass through it lie in `box`,
+/// and among them those whose centre's ray is within the sphere's angular reach (its cosine
+/// `min_cos`, about `to_centre` of length `distance`).
+struct ScreenReach {
+    PixelBox box;
+    Vec3 to_centre;
+    float distance = 0, reach = 0;
+};
+
+ScreenReach screen_reach(const Camera& camera, const BoundingSphere& sphere) {
+    ScreenReach out;
+    if (sphere.empty()) return out;
     const Vec3 eye = camera.generate_ray(0, 0).o;
-    const Vec3 to_centre = sphere.center - eye;
-    const float distance = length(to_centre);
+    out.to_centre = sphere.center - eye;
+    out.distance = length(out.to_centre);
     // A pixel's rays leave within this angle of its centre's ray: half its diagonal, widest at
     // the image's centre, with a margin for rounding.
     const float pixel_angle = std::atan(std::sqrt(2.0f) * camera.tan_half_fov_y / float(camera.height)) * 1.05f + 1e-6f;
     // Beyond this angle from the centre's direction, a ray misses the sphere.
-    const float reach = distance > sphere.radius ? std::asin(sphere.radius / distance) + pixel_angle : pi;
+    out.reach = out.distance > sphere.radius ? std::asin(sphere.radius / out.distance) + pixel_angle : pi;
     float x_lo = 0, y_lo = 0, x_hi = float(camera.width), y_hi = float(camera.height);
-    if (reach < pi / 2) {
+    if (out.reach < pi / 2) {
         // The corners of the sphere's cube: their screen box holds the sphere's, if all are in front.
         x_lo = y_lo = infinity, x_hi = y_hi = -infinity;
         for (int corner = 0; corner < 8; ++corner) {
@@ -245,18 +256,45 @@ void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, s
             y_lo = std::min(y_lo, at->y), y_hi = std::max(y_hi, at->y);
         }
     }
-    if (x_hi < -1 || y_hi < -1 || x_lo > float(camera.width) + 1 || y_lo > float(camera.height) + 1) return;
-    // A pixel more each way (rounding in the projection), then the pixels whose rays come within
-    // the sphere's angular reach.
-    const int x0 = std::max(int(std::floor(x_lo)) - 1, 0), y0 = std::max(int(std::floor(y_lo)) - 1, 0);
-    const int x1 = std::min(int(std::ceil(x_hi)) + 1, camera.width - 1),
-              y1 = std::min(int(std::ceil(y_hi)) + 1, camera.height - 1);
-    const bool round = outline == Outline::round && reach < pi;
-    const float min_cos = round ? std::cos(reach) : -2.0f;
-    for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x)
-            if (!round || dot(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f).d, to_centre) >= min_cos * distance)
+    if (x_hi < -1 || y_hi < -1 || x_lo > float(camera.width) + 1 || y_lo > float(camera.height) + 1) return out;
+    // A pixel more each way (rounding in the projection).
+    out.box = {std::max(int(std::floor(x_lo)) - 1, 0), std::max(int(std::floor(y_lo)) - 1, 0),
+               std::min(int(std::ceil(x_hi)) + 1, camera.width - 1),
+               std::min(int(std::ceil(y_hi)) + 1, camera.height - 1)};
+    return out;
+}
+
+}  // namespace
+
+void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
+                           Outline outline) {
+    const ScreenReach on_screen = screen_reach(camera, sphere);
+    const PixelBox& box = on_screen.box;
+    // Within the box, the pixels whose rays come within the sphere's angular reach.
+    const bool round = outline == Outline::round && on_screen.reach < pi;
+    const float min_cos = round ? std::cos(on_screen.reach) : -2.0f;
+    for (int y = box.y0; y <= box.y1; ++y)
+        for (int x = box.x0; x <= box.x1; ++x)
+            if (!round || dot(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f).d, on_screen.to_centre) >=
+                              min_cos * on_screen.distance)
                 mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
+}
+
+void mark_spheres_on_screen(const Camera& camera, const std::vector<BoundingSphere>& spheres,
+                            std::vector<uint8_t>& mask) {
+    std::vector<PixelBox> boxes(spheres.size());
+    parallel_for_chunks(long(spheres.size()), 256, [&](long begin, long end) {
+        for (long i = begin; i < end; ++i) boxes[size_t(i)] = screen_reach(camera, spheres[size_t(i)]).box;
+    });
+    // By bands of rows, each marking every box's part of it.
+    constexpr int band = 8;
+    parallel_for_chunks((camera.height + band - 1) / band, 1, [&](long begin, long end) {
+        const int y_begin = int(begin) * band, y_end = std::min(int(end) * band, camera.height);
+        for (const PixelBox& box : boxes)
+            for (int y = std::max(box.y0, y_begin); y <= std::min(box.y1, y_end - 1); ++y)
+                std::fill_n(mask.begin() + ptrdiff_t(size_t(y) * size_t(camera.width) + size_t(box.x0)),
+                            std::max(box.x1 - box.x0 + 1, 0), uint8_t(1));
+    });
 }
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {

@@ -232,6 +232,16 @@ enum class Outline { box, round };
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
                            Outline outline = Outline::box);
 
+/// The pixels [x0, x1] x [y0, y1] (none when x1 < x0 or y1 < y0).
+struct PixelBox {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+};
+
+/// mark_sphere_on_screen(camera, s, mask) for every sphere s of `spheres`, in parallel: a frame
+/// marks the reach of thousands of records at production sizes.
+void mark_spheres_on_screen(const Camera& camera, const std::vector<BoundingSphere>& spheres,
+                            std::vector<uint8_t>& mask);
+
 /// Whether a frame of `scene` at `frame` may reuse pixels of a static frame made at `static_frame`
 /// of the same segment: the same camera, lights and emissions, and no dynamic object emits.
 bool same_view_and_lights(const Scene& scene, const FrameState& frame, const FrameState& static_frame);

@@ -115,6 +115,35 @@ TEST(PixelReuse, ScreenMarksHoldEveryPixelWhoseRaysPassThroughTheSphere) {
     }
 }
 
+TEST(PixelReuse, SpheresMarkedTogetherAreThoseMarkedOneByOne) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
+    scene.set_resolution(97, 61);  // bands of rows that do not divide the height
+    const Camera camera = scene.evaluate(0).camera;
+    Pcg32 rng(5);
+    std::vector<BoundingSphere> spheres{{}};  // an empty one too
+    for (int i = 0; i < 80; ++i) {
+        // Small and large spheres about points the camera sees.
+        const Ray through = camera.generate_ray(rng.next_float() * 97, rng.next_float() * 61);
+        spheres.push_back({through.o + through.d * (0.5f + rng.next_float() * 8), 0.001f + rng.next_float() * 0.1f});
+    }
+    for (const bool behind : {false, true}) {
+        // Last, one that reaches behind the camera: every pixel.
+        if (behind) spheres.push_back({camera.generate_ray(40, 30).o, 0.5f});
+        std::vector<uint8_t> one_by_one(97 * 61, 0), together(97 * 61, 0);
+        for (const BoundingSphere& sphere : spheres) mark_sphere_on_screen(camera, sphere, one_by_one);
+        mark_spheres_on_screen(camera, spheres, together);
+        EXPECT_EQ(together, one_by_one);
+        const long marked = std::count(together.begin(), together.end(), 1);
+        if (behind) {
+            EXPECT_EQ(marked, 97 * 61);
+        } else {
+            // Neither a screen marked whole nor one left empty.
+            EXPECT_GT(marked, 0);
+            EXPECT_LT(marked, 97 * 61);
+        }
+    }
+}
+
 PhotonMappingSettings small_settings() {
     PhotonMappingSettings settings;
     settings.photons = {.global_photons = 40'000, .caustic_photons = 20'000};
