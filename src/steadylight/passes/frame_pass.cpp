@@ -329,11 +329,14 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
                               ChangedValues::carried, solution.compose_photons);
     const TracedPhotons& photons = traced.maps;
 
-    // Influence of the dynamic objects on each pixel's point.
+    // Influence of the dynamic objects on each pixel's point (in a still view, the points its
+    // samples saw before where nothing dynamic is in the way).
+    const StaticFrame* base = reusable_static_frame(context, solution, frozen);
     const InfluenceMap influence = timed_phase("influence", stats.influence_s, [&] {
         return frozen ? InfluenceMap{}
                       : estimate_influence(context, photons.dynamic, static_cache, localized,
-                                           photon.irradiance_estimate.max_radius);
+                                           photon.irradiance_estimate.max_radius,
+                                           base ? solution.influence_points.get() : nullptr);
     });
 
     // L_y: the dynamic cache.
@@ -359,7 +362,6 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     // frame only the pixels the frame's changes reach (planning them is part of the phase).
     const LocalizedLighting lighting{static_cache,      dynamic_cache,   corrected_cache, influence,
                                      traced.irradiance, photons.caustic, frozen};
-    const StaticFrame* base = reusable_static_frame(context, solution, frozen);
     PixelPlan plan;
     ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
         if (!base) return shade_localized(context, lighting, photon, localized, Visibility::everything, nullptr, stats);

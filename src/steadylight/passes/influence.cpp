@@ -3,21 +3,28 @@
 
 #include <algorithm>
 
+#include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/passes/photon_gather.h"
 
 namespace steadylight {
 namespace {
 
-float relative_influence(const FrameContext& context, const PhotonMap& dynamic, const IrradianceCache& static_cache,
-                         const LocalizedSettings& settings, float max_radius, int x, int y) {
-    const std::optional<CachePoint> point = cache_point_at(context, Visibility::everything, x, y);
-    if (!point) return 0;
+/// The static indirect irradiance the influence is measured against: its largest channel.
+float reference_at(const IrradianceCache& static_cache, Vec3 p, Vec3 n) {
+    const std::optional<Rgb> E = static_cache.interpolate(p, n, 2);
+    return E ? max_component(*E) : 0.0f;
+}
+
+/// I relative to `reference()` at p (asked only where some dynamic photon is near).
+template <class Reference>
+float relative_influence(const PhotonMap& dynamic, const LocalizedSettings& settings, float max_radius, Vec3 p,
+                         Reference&& reference) {
     thread_local std::vector<Neighbour> neighbours;
     // Most of the image lies far from every dynamic photon: one nearest look-up tells.
-    dynamic.k_nearest(point->p, 1, max_radius, neighbours);
+    dynamic.k_nearest(p, 1, max_radius, neighbours);
     if (neighbours.empty()) return 0;
-    dynamic.k_nearest(point->p, settings.influence_photons, max_radius, neighbours);
+    dynamic.k_nearest(p, settings.influence_photons, max_radius, neighbours);
     float sum = 0;
     for (const Neighbour& nb : neighbours) {
         const Rgb& power = dynamic.photons()[nb.index].power;
@@ -26,27 +33,81 @@ float relative_influence(const FrameContext& context, const PhotonMap& dynamic, 
     const float r2 =
         int(neighbours.size()) < settings.influence_photons ? max_radius * max_radius : neighbours.back().distance2;
     const float influence = sum / (pi * r2);
-    const std::optional<Rgb> E = static_cache.interpolate(point->p, point->n, 2);
     // Scale-free: compare with the static indirect irradiance (or, where there is none, with
     // the influence itself, which then counts as large).
-    const float reference = E ? max_component(*E) : 0.0f;
-    return reference > 0 ? influence / reference : (influence > 0 ? infinity : 0.0f);
+    const float E = reference();
+    return E > 0 ? influence / E : (influence > 0 ? infinity : 0.0f);
 }
+
+/// The influence samples' grid: every step-th pixel centre.
+struct SampleGrid {
+    int step, columns, rows;
+    SampleGrid(const Camera& camera, int every)
+        : step(every), columns((camera.width + every - 1) / every), rows((camera.height + every - 1) / every) {}
+    size_t size() const { return size_t(columns) * size_t(rows); }
+    int x(long i) const { return int(i % columns) * step; }
+    int y(long i) const { return int(i / columns) * step; }
+};
 
 }  // namespace
 
+const std::vector<KeptInfluencePoints::Sample>& KeptInfluencePoints::samples(const FrameContext& context,
+                                                                             const IrradianceCache& static_cache,
+                                                                             const LocalizedSettings& settings) const {
+    std::call_once(m_once, [&] {
+        const Camera& camera = context.frame.camera;
+        const SampleGrid grid(camera, settings.influence_step);
+        m_samples.assign(grid.size(), {});
+        parallel_for_chunks(long(grid.size()), 64, [&](long begin, long end) {
+            for (long i = begin; i < end; ++i) {
+                const int x = grid.x(i), y = grid.y(i);
+                Sample& sample = m_samples[size_t(i)];
+                int bounces = 0;
+                const std::optional<CachePoint> point =
+                    cache_point_at(context, Visibility::static_only, x, y, &bounces);
+                if (bounces > 0) continue;  // through mirrors or glass: not kept
+                const std::optional<Hit> hit = context.tracer.intersect(
+                    camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), Visibility::static_only);
+                sample.static_t = hit ? hit->t : infinity;
+                sample.kept = true;
+                if (point)
+                    sample.p = point->p, sample.seen = true,
+                    sample.reference = reference_at(static_cache, point->p, point->n);
+            }
+        });
+    });
+    SL_CHECK_EQ(m_samples.size(), SampleGrid(context.frame.camera, settings.influence_step).size());
+    return m_samples;
+}
+
 InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic,
                                 const IrradianceCache& static_cache, const LocalizedSettings& settings,
-                                float search_radius) {
+                                float search_radius, const KeptInfluencePoints* kept) {
     const Camera& camera = context.frame.camera;
     InfluenceMap map{camera.width, camera.height, settings.influence_step, {}};
-    const int columns = (camera.width + map.step - 1) / map.step, rows = (camera.height + map.step - 1) / map.step;
-    map.values.assign(size_t(columns * rows), 0.0f);
+    const SampleGrid grid(camera, map.step);
+    map.values.assign(grid.size(), 0.0f);
     if (dynamic.size() == 0) return map;
+    const std::vector<KeptInfluencePoints::Sample>* samples =
+        kept ? &kept->samples(context, static_cache, settings) : nullptr;
     parallel_for_chunks(long(map.values.size()), 64, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
-            const int x = int(i % columns) * map.step, y = int(i / columns) * map.step;
-            map.values[size_t(i)] = relative_influence(context, dynamic, static_cache, settings, search_radius, x, y);
+            const int x = grid.x(i), y = grid.y(i);
+            float& value = map.values[size_t(i)];
+            if (samples) {
+                const KeptInfluencePoints::Sample& sample = (*samples)[size_t(i)];
+                if (sample.kept && !context.tracer.meets_dynamic(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f),
+                                                                 sample.static_t)) {
+                    if (sample.seen)
+                        value = relative_influence(dynamic, settings, search_radius, sample.p,
+                                                   [&] { return sample.reference; });
+                    continue;
+                }
+            }
+            const std::optional<CachePoint> point = cache_point_at(context, Visibility::everything, x, y);
+            if (point)
+                value = relative_influence(dynamic, settings, search_radius, point->p,
+                                           [&] { return reference_at(static_cache, point->p, point->n); });
         }
     });
     return map;

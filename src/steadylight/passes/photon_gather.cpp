@@ -78,11 +78,13 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
     return result;
 }
 
-std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y) {
+std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y,
+                                         int* bounces) {
     const Camera& camera = context.frame.camera;
     Ray ray = camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f);
     float distance = 0;  // along the path: the pixel's footprint grows with it, mirrors or not
     for (int depth = 0; depth <= max_specular_chain; ++depth) {
+        if (bounces) *bounces = depth;
         const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
         if (!hit) return std::nullopt;
         distance += hit->t;

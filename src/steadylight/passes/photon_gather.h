@@ -37,7 +37,10 @@ constexpr int max_gather_chain = 64;
 /// indirect irradiance is cached: directly, or through mirrors and glass (so that what the camera
 /// sees through them is cached too, instead of gathered anew by each camera ray that lands
 /// there; rough glass as if it were smooth); std::nullopt for background and other glossy surfaces.
-std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y);
+/// `bounces`, when given, receives how many mirror and glass bounces it followed: 0 when the
+/// answer came from the centre's first ray alone.
+std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y,
+                                         int* bounces = nullptr);
 
 /// Adds records to `cache` over the camera's image by final gathering against `photons`, at the
 /// pixels `wanted` accepts (all when empty).
