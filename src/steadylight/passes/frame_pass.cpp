@@ -222,15 +222,20 @@ const StaticFrame* reusable_static_frame(const FrameContext& context, const Stat
 }
 
 /// L_y: the dynamic cache, built only where the influence is felt and on dynamic objects.
+/// `kept`, in a still view: what its pixel centres see with the dynamic objects left out.
 CacheBuildStats build_dynamic_cache(IrradianceCache& dynamic_cache, const FrameContext& context,
                                     const IrradiancePhotons& irradiance, const InfluenceMap& influence,
                                     const PhotonMappingSettings& photon, const LocalizedSettings& localized,
-                                    bool frozen) {
+                                    bool frozen, const KeptCentreRays* kept) {
+    const auto felt = [&](int x, int y) { return !frozen && influence.at(x, y) > localized.tau_lower; };
     const auto wanted = [&](const CachePoint& point, int x, int y) {
-        return context.scene.object(point.object).is_dynamic() || (!frozen && influence.at(x, y) > localized.tau_lower);
+        return context.scene.object(point.object).is_dynamic() || felt(x, y);
     };
+    // Where the influence is not felt, only a centre that sees a dynamic object wants a record.
+    std::function<bool(int, int)> may_want;
+    if (kept) may_want = [&](int x, int y) { return felt(x, y) || !kept->sees_static_directly(context, x, y); };
     return build_photon_cache(dynamic_cache, {context, irradiance, photon.irradiance_estimate.max_radius, photon.gather,
-                                              Visibility::everything, wanted});
+                                              Visibility::everything, wanted, may_want});
 }
 
 /// Which pixels a frame shades again against the static frame `base`, and what it reuses
@@ -329,20 +334,24 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
                               ChangedValues::carried, solution.compose_photons);
     const TracedPhotons& photons = traced.maps;
 
-    // Influence of the dynamic objects on each pixel's point (in a still view, the points its
-    // samples saw before where nothing dynamic is in the way).
+    // In a still view, what the pixel centres see where nothing dynamic is in the way is the
+    // segment's (the influence and L_y ask for it).
     const StaticFrame* base = reusable_static_frame(context, solution, frozen);
+    const KeptCentreRays* centre_rays = base ? solution.centre_rays.get() : nullptr;
+
+    // Influence of the dynamic objects on each pixel's point.
     const InfluenceMap influence = timed_phase("influence", stats.influence_s, [&] {
+        if (centre_rays) centre_rays->make(context, static_cache, localized.influence_step);
         return frozen ? InfluenceMap{}
                       : estimate_influence(context, photons.dynamic, static_cache, localized,
-                                           photon.irradiance_estimate.max_radius,
-                                           base ? solution.influence_points.get() : nullptr);
+                                           photon.irradiance_estimate.max_radius, centre_rays);
     });
 
     // L_y: the dynamic cache.
     IrradianceCache dynamic_cache(photon.cache);
     const CacheBuildStats built = timed_phase("L_y", stats.cache_s, [&] {
-        return build_dynamic_cache(dynamic_cache, context, traced.irradiance, influence, photon, localized, frozen);
+        return build_dynamic_cache(dynamic_cache, context, traced.irradiance, influence, photon, localized, frozen,
+                                   centre_rays);
     });
     stats.irradiance_records = built.records_added;
     stats.gather_rays = built.gather_rays;

@@ -3,18 +3,11 @@
 
 #include <algorithm>
 
-#include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/passes/photon_gather.h"
 
 namespace steadylight {
 namespace {
-
-/// The static indirect irradiance the influence is measured against: its largest channel.
-float reference_at(const IrradianceCache& static_cache, Vec3 p, Vec3 n) {
-    const std::optional<Rgb> E = static_cache.interpolate(p, n, 2);
-    return E ? max_component(*E) : 0.0f;
-}
 
 /// I relative to `reference()` at p (asked only where some dynamic photon is near).
 template <class Reference>
@@ -51,63 +44,29 @@ struct SampleGrid {
 
 }  // namespace
 
-const std::vector<KeptInfluencePoints::Sample>& KeptInfluencePoints::samples(const FrameContext& context,
-                                                                             const IrradianceCache& static_cache,
-                                                                             const LocalizedSettings& settings) const {
-    std::call_once(m_once, [&] {
-        const Camera& camera = context.frame.camera;
-        const SampleGrid grid(camera, settings.influence_step);
-        m_samples.assign(grid.size(), {});
-        parallel_for_chunks(long(grid.size()), 64, [&](long begin, long end) {
-            for (long i = begin; i < end; ++i) {
-                const int x = grid.x(i), y = grid.y(i);
-                Sample& sample = m_samples[size_t(i)];
-                int bounces = 0;
-                const std::optional<CachePoint> point =
-                    cache_point_at(context, Visibility::static_only, x, y, &bounces);
-                if (bounces > 0) continue;  // through mirrors or glass: not kept
-                const std::optional<Hit> hit = context.tracer.intersect(
-                    camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), Visibility::static_only);
-                sample.static_t = hit ? hit->t : infinity;
-                sample.kept = true;
-                if (point)
-                    sample.p = point->p, sample.seen = true,
-                    sample.reference = reference_at(static_cache, point->p, point->n);
-            }
-        });
-    });
-    SL_CHECK_EQ(m_samples.size(), SampleGrid(context.frame.camera, settings.influence_step).size());
-    return m_samples;
-}
-
 InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic,
                                 const IrradianceCache& static_cache, const LocalizedSettings& settings,
-                                float search_radius, const KeptInfluencePoints* kept) {
+                                float search_radius, const KeptCentreRays* kept) {
     const Camera& camera = context.frame.camera;
     InfluenceMap map{camera.width, camera.height, settings.influence_step, {}};
     const SampleGrid grid(camera, map.step);
     map.values.assign(grid.size(), 0.0f);
     if (dynamic.size() == 0) return map;
-    const std::vector<KeptInfluencePoints::Sample>* samples =
-        kept ? &kept->samples(context, static_cache, settings) : nullptr;
     parallel_for_chunks(long(map.values.size()), 64, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
             const int x = grid.x(i), y = grid.y(i);
             float& value = map.values[size_t(i)];
-            if (samples) {
-                const KeptInfluencePoints::Sample& sample = (*samples)[size_t(i)];
-                if (sample.kept && !context.tracer.meets_dynamic(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f),
-                                                                 sample.static_t)) {
-                    if (sample.seen)
-                        value = relative_influence(dynamic, settings, search_radius, sample.p,
-                                                   [&] { return sample.reference; });
-                    continue;
-                }
+            if (kept && kept->sees_static_directly(context, x, y)) {
+                const KeptCentreRays::Sample& sample = kept->sample(size_t(i));
+                if (sample.seen)
+                    value = relative_influence(dynamic, settings, search_radius, sample.p,
+                                               [&] { return sample.reference; });
+                continue;
             }
             const std::optional<CachePoint> point = cache_point_at(context, Visibility::everything, x, y);
             if (point)
                 value = relative_influence(dynamic, settings, search_radius, point->p,
-                                           [&] { return reference_at(static_cache, point->p, point->n); });
+                                           [&] { return influence_reference(static_cache, point->p, point->n); });
         }
     });
     return map;

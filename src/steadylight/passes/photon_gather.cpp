@@ -124,6 +124,7 @@ CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuil
     return build_cache_over_image(
         cache, camera.width, camera.height,
         [&](int x, int y) -> std::optional<CachePoint> {
+            if (build.may_want && !build.may_want(x, y)) return std::nullopt;
             const std::optional<CachePoint> point = cache_point_at(build.context, build.visibility, x, y);
             if (point && build.wanted && !build.wanted(*point, x, y)) return std::nullopt;
             return point;

@@ -43,7 +43,8 @@ std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility
                                          int* bounces = nullptr);
 
 /// Adds records to `cache` over the camera's image by final gathering against `photons`, at the
-/// pixels `wanted` accepts (all when empty).
+/// pixels `wanted` accepts (all when empty); pixels `may_want` refuses (none when empty) are
+/// known not to be wanted without their point.
 struct PhotonCacheBuild {
     const FrameContext& context;
     const IrradiancePhotons& photons;
@@ -51,6 +52,7 @@ struct PhotonCacheBuild {
     const GatherSettings& gather;
     Visibility visibility;
     std::function<bool(const CachePoint&, int x, int y)> wanted;
+    std::function<bool(int x, int y)> may_want;
 };
 CacheBuildStats build_photon_cache(IrradianceCache& cache, const PhotonCacheBuild& build);
 

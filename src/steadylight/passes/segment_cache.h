@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "steadylight/passes/influence.h"
+#include "steadylight/passes/centre_rays.h"
 #include "steadylight/passes/pixel_reuse.h"
 #include "steadylight/passes/record_correction.h"
 #include "steadylight/passes/segment_pass.h"
@@ -30,8 +30,8 @@ struct StaticSolution {
     std::shared_ptr<const StaticFrame> static_frame;  // null: frames shade every pixel
     /// The records' disc shares for L_t's correction, made by the first frame that needs them.
     std::shared_ptr<const CorrectionCoverage> correction_coverage = std::make_shared<CorrectionCoverage>();
-    /// What the influence samples see, made by the first frame that needs it (a still view only).
-    std::shared_ptr<const KeptInfluencePoints> influence_points = std::make_shared<KeptInfluencePoints>();
+    /// What the pixel centres see, made by the first frame that needs it (a still view only).
+    std::shared_ptr<const KeptCentreRays> centre_rays = std::make_shared<KeptCentreRays>();
 
     long records() const { return long(cache.records().size()); }
 };

@@ -1,0 +1,56 @@
+// What a still view's pixel centres see (centre_rays.h).
+#include "steadylight/passes/centre_rays.h"
+
+#include "steadylight/base/check.h"
+#include "steadylight/base/parallel.h"
+#include "steadylight/passes/photon_gather.h"
+
+namespace steadylight {
+
+float influence_reference(const IrradianceCache& static_cache, Vec3 p, Vec3 n) {
+    const std::optional<Rgb> E = static_cache.interpolate(p, n, 2);
+    return E ? max_component(*E) : 0.0f;
+}
+
+void KeptCentreRays::make(const FrameContext& context, const IrradianceCache& static_cache, int step) const {
+    const Camera& camera = context.frame.camera;
+    std::call_once(m_once, [&] {
+        m_width = camera.width, m_step = step;
+        m_static_t.assign(size_t(camera.width) * size_t(camera.height), 0.0f);
+        const int columns = (camera.width + step - 1) / step, rows = (camera.height + step - 1) / step;
+        m_samples.assign(size_t(columns) * size_t(rows), {});
+        parallel_for_chunks(camera.height, 4, [&](long begin, long end) {
+            for (int y = int(begin); y < int(end); ++y)
+                for (int x = 0; x < camera.width; ++x) {
+                    int bounces = 0;
+                    const std::optional<CachePoint> point =
+                        cache_point_at(context, Visibility::static_only, x, y, &bounces);
+                    float& static_t = m_static_t[size_t(y) * size_t(camera.width) + size_t(x)];
+                    if (bounces > 0) {
+                        static_t = -1;
+                        continue;
+                    }
+                    const std::optional<Hit> hit = context.tracer.intersect(
+                        camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), Visibility::static_only);
+                    static_t = hit ? hit->t : infinity;
+                    if (point && x % step == 0 && y % step == 0)
+                        m_samples[size_t(y / step) * size_t(columns) + size_t(x / step)] = {
+                            point->p, influence_reference(static_cache, point->p, point->n), true};
+                }
+        });
+    });
+    SL_CHECK(m_width == camera.width && m_static_t.size() == size_t(camera.width) * size_t(camera.height) &&
+             m_step == step);
+}
+
+bool KeptCentreRays::sees_static_directly(const FrameContext& context, int x, int y) const {
+    const float static_t = m_static_t[size_t(y) * size_t(m_width) + size_t(x)];
+    return static_t >= 0 && !context.tracer.meets_dynamic(
+                                context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), static_t);
+}
+
+size_t KeptCentreRays::bytes() const {
+    return m_static_t.capacity() * sizeof(float) + m_samples.capacity() * sizeof(Sample);
+}
+
+}  // namespace steadylight
