@@ -45,8 +45,8 @@ void KeptCentreRays::make(const FrameContext& context, const IrradianceCache& st
 
 bool KeptCentreRays::sees_static_directly(const FrameContext& context, int x, int y) const {
     const float static_t = m_static_t[size_t(y) * size_t(m_width) + size_t(x)];
-    return static_t >= 0 && !context.tracer.meets_dynamic(
-                                context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), static_t);
+    return static_t >= 0 &&
+           !context.tracer.meets_dynamic(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), static_t);
 }
 
 size_t KeptCentreRays::bytes() const {
