@@ -49,8 +49,4 @@ bool KeptCentreRays::sees_static_directly(const FrameContext& context, int x, in
            !context.tracer.meets_dynamic(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), static_t);
 }
 
-size_t KeptCentreRays::bytes() const {
-    return m_static_t.capacity() * sizeof(float) + m_samples.capacity() * sizeof(Sample);
-}
-
 }  // namespace steadylight

@@ -29,15 +29,12 @@ public:
     /// (thread-safe; later calls must be for the same view and step).
     void make(const FrameContext& context, const IrradianceCache& static_cache, int step) const;
 
-    /// Whether pixel (x, y)'s centre sees in `context`'s frame (of the view it was made for) what
-    /// it sees with the dynamic objects left out, directly: then its point (cache_point_at) lies on a static object or
-    /// is none, and is the kept one.
+    /// Whether pixel (x, y)'s centre sees in `context`'s frame (of the view it was made for)
+    /// what it sees with the dynamic objects left out, directly: then its point (cache_point_at)
+    /// lies on a static object or is none, and is the kept one.
     bool sees_static_directly(const FrameContext& context, int x, int y) const;
     /// Influence sample i (InfluenceMap's order) where sees_static_directly.
     const Sample& sample(size_t i) const { return m_samples[i]; }
-
-    /// The memory it holds.
-    size_t bytes() const;
 
 private:
     mutable std::once_flag m_once;
