@@ -15,36 +15,32 @@ float influence_reference(const IrradianceCache& static_cache, Vec3 p, Vec3 n) {
 void KeptCentreRays::make(const FrameContext& context, const IrradianceCache& static_cache, int step) const {
     const Camera& camera = context.frame.camera;
     std::call_once(m_once, [&] {
-        m_width = camera.width, m_step = step;
+        m_grid = {camera.width, camera.height, step};
         m_static_t.assign(size_t(camera.width) * size_t(camera.height), 0.0f);
-        const int columns = (camera.width + step - 1) / step, rows = (camera.height + step - 1) / step;
-        m_samples.assign(size_t(columns) * size_t(rows), {});
+        m_samples.assign(m_grid.size(), {});
         parallel_for_chunks(camera.height, 4, [&](long begin, long end) {
             for (int y = int(begin); y < int(end); ++y)
                 for (int x = 0; x < camera.width; ++x) {
-                    int bounces = 0;
+                    CentrePath path;
                     const std::optional<CachePoint> point =
-                        cache_point_at(context, Visibility::static_only, x, y, &bounces);
+                        cache_point_at(context, Visibility::static_only, x, y, &path);
                     float& static_t = m_static_t[size_t(y) * size_t(camera.width) + size_t(x)];
-                    if (bounces > 0) {
+                    if (path.bounces > 0) {
                         static_t = -1;
                         continue;
                     }
-                    const std::optional<Hit> hit = context.tracer.intersect(
-                        camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), Visibility::static_only);
-                    static_t = hit ? hit->t : infinity;
+                    static_t = path.first_t;
                     if (point && x % step == 0 && y % step == 0)
-                        m_samples[size_t(y / step) * size_t(columns) + size_t(x / step)] = {
-                            point->p, influence_reference(static_cache, point->p, point->n), true};
+                        m_samples[m_grid.at(x, y)] = {point->p, influence_reference(static_cache, point->p, point->n),
+                                                      true};
                 }
         });
     });
-    SL_CHECK(m_width == camera.width && m_static_t.size() == size_t(camera.width) * size_t(camera.height) &&
-             m_step == step);
+    SL_CHECK(m_grid.width == camera.width && m_grid.height == camera.height && m_grid.step == step);
 }
 
 bool KeptCentreRays::sees_static_directly(const FrameContext& context, int x, int y) const {
-    const float static_t = m_static_t[size_t(y) * size_t(m_width) + size_t(x)];
+    const float static_t = m_static_t[size_t(y) * size_t(m_grid.width) + size_t(x)];
     return static_t >= 0 &&
            !context.tracer.meets_dynamic(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), static_t);
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "steadylight/irradiance/irradiance_cache.h"
+#include "steadylight/passes/sample_grid.h"
 #include "steadylight/shading/frame_context.h"
 
 namespace steadylight {
@@ -33,7 +34,7 @@ public:
     /// what it sees with the dynamic objects left out, directly: then its point (cache_point_at)
     /// lies on a static object or is none, and is the kept one.
     bool sees_static_directly(const FrameContext& context, int x, int y) const;
-    /// Influence sample i (InfluenceMap's order) where sees_static_directly.
+    /// Influence sample i (of SampleGrid's order) where sees_static_directly.
     const Sample& sample(size_t i) const { return m_samples[i]; }
 
 private:
@@ -41,8 +42,8 @@ private:
     // Per pixel, row by row: where its centre's ray first meets a static object (infinity:
     // none); negative where its point is found through mirrors or glass.
     mutable std::vector<float> m_static_t;
-    mutable std::vector<Sample> m_samples;
-    mutable int m_width = 0, m_step = 0;
+    mutable std::vector<Sample> m_samples;  // per sample of m_grid
+    mutable SampleGrid m_grid;
 };
 
 /// The static indirect irradiance the influence is measured against at (p, n): its largest

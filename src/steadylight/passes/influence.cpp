@@ -32,29 +32,19 @@ float relative_influence(const PhotonMap& dynamic, const LocalizedSettings& sett
     return E > 0 ? influence / E : (influence > 0 ? infinity : 0.0f);
 }
 
-/// The influence samples' grid: every step-th pixel centre.
-struct SampleGrid {
-    int step, columns, rows;
-    SampleGrid(const Camera& camera, int every)
-        : step(every), columns((camera.width + every - 1) / every), rows((camera.height + every - 1) / every) {}
-    size_t size() const { return size_t(columns) * size_t(rows); }
-    int x(long i) const { return int(i % columns) * step; }
-    int y(long i) const { return int(i / columns) * step; }
-};
-
 }  // namespace
 
 InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic,
                                 const IrradianceCache& static_cache, const LocalizedSettings& settings,
                                 float search_radius, const KeptCentreRays* kept) {
     const Camera& camera = context.frame.camera;
-    InfluenceMap map{camera.width, camera.height, settings.influence_step, {}};
-    const SampleGrid grid(camera, map.step);
+    InfluenceMap map{{camera.width, camera.height, settings.influence_step}, {}};
+    const SampleGrid& grid = map.grid;
     map.values.assign(grid.size(), 0.0f);
     if (dynamic.size() == 0) return map;
     parallel_for_chunks(long(map.values.size()), 64, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
-            const int x = grid.x(i), y = grid.y(i);
+            const int x = grid.x(size_t(i)), y = grid.y(size_t(i));
             float& value = map.values[size_t(i)];
             if (kept && kept->sees_static_directly(context, x, y)) {
                 const KeptCentreRays::Sample& sample = kept->sample(size_t(i));

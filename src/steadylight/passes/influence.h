@@ -9,6 +9,7 @@
 #include "steadylight/irradiance/irradiance_cache.h"
 #include "steadylight/passes/centre_rays.h"
 #include "steadylight/passes/localized_settings.h"
+#include "steadylight/passes/sample_grid.h"
 #include "steadylight/photons/photon_map.h"
 #include "steadylight/shading/frame_context.h"
 
@@ -17,13 +18,10 @@ namespace steadylight {
 /// The influence I relative to the static indirect irradiance, at every `step`-th pixel centre;
 /// the pixels between take their block's value. Empty (no values) where nothing was estimated.
 struct InfluenceMap {
-    int width = 0, height = 0, step = 1;
-    std::vector<float> values;  // (width / step rounded up) x (height / step rounded up)
+    SampleGrid grid;
+    std::vector<float> values;  // per sample of the grid
 
-    float at(int x, int y) const {
-        const int columns = (width + step - 1) / step;
-        return values[size_t((y / step) * columns + x / step)];
-    }
+    float at(int x, int y) const { return values[grid.at(x, y)]; }
 };
 
 /// I at the pixels of the frame, from the frame's dynamic photons; `search_radius` bounds the

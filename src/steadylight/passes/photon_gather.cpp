@@ -79,13 +79,16 @@ GatherHit gather_from_photons(const FrameContext& context, const IrradiancePhoto
 }
 
 std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y,
-                                         int* bounces) {
+                                         CentrePath* path) {
     const Camera& camera = context.frame.camera;
     Ray ray = camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f);
     float distance = 0;  // along the path: the pixel's footprint grows with it, mirrors or not
     for (int depth = 0; depth <= max_specular_chain; ++depth) {
-        if (bounces) *bounces = depth;
         const std::optional<Hit> hit = context.tracer.intersect(ray, visibility);
+        if (path) {
+            path->bounces = depth;
+            if (depth == 0 && hit) path->first_t = hit->t;
+        }
         if (!hit) return std::nullopt;
         distance += hit->t;
         const SurfacePoint surface = make_surface_point(context.scene, context.frame, ray, *hit);

@@ -37,10 +37,13 @@ constexpr int max_gather_chain = 64;
 /// indirect irradiance is cached: directly, or through mirrors and glass (so that what the camera
 /// sees through them is cached too, instead of gathered anew by each camera ray that lands
 /// there; rough glass as if it were smooth); std::nullopt for background and other glossy surfaces.
-/// `bounces`, when given, receives how many mirror and glass bounces it followed: 0 when the
-/// answer came from the centre's first ray alone.
+/// `path`, when given, receives how it got there.
+struct CentrePath {
+    int bounces = 0;           // mirror and glass bounces followed: 0 when the centre's first ray answered alone
+    float first_t = infinity;  // where the centre's first ray met a surface; infinity: nowhere
+};
 std::optional<CachePoint> cache_point_at(const FrameContext& context, Visibility visibility, int x, int y,
-                                         int* bounces = nullptr);
+                                         CentrePath* path = nullptr);
 
 /// Adds records to `cache` over the camera's image by final gathering against `photons`, at the
 /// pixels `wanted` accepts (all when empty); pixels `may_want` refuses (none when empty) are
