@@ -194,6 +194,16 @@ std::string record_settings(const RenderSettings& settings, const Scene& scene, 
     return settings_key(json);
 }
 
+/// Removes the claim that a process killed between claiming `frame` and finding it complete
+/// left beside it, once its holder is dead (taken over, then released): no one else would, since
+/// a complete frame is never claimed again.
+void remove_dead_claim(const RenderSettings& settings, const Scene& scene, int frame) {
+    if (!std::filesystem::exists(frame_claim_name(settings.out_dir, scene.name(), frame))) return;
+    const LockAttempt attempt = try_claim_frame(settings.out_dir, scene.name(), frame);
+    if (attempt.lock && !attempt.taken_over.empty())
+        spdlog::info("frame {}: removed the dead claim left beside the complete frame ({})", frame, attempt.taken_over);
+}
+
 /// The selected frames whose outputs are not complete yet (all of them with --overwrite).
 std::vector<int> frames_to_render(const RenderSettings& settings, const Scene& scene, const std::vector<int>& frames,
                                   const std::string& key, RenderSummary& summary) {
@@ -202,6 +212,7 @@ std::vector<int> frames_to_render(const RenderSettings& settings, const Scene& s
     for (const int frame : frames) {
         const FrameCheck check = check_frame_outputs(settings.out_dir, scene.name(), frame, key);
         (check.complete ? complete : todo).push_back(frame);
+        if (check.complete) remove_dead_claim(settings, scene, frame);
         if (!check.problem.empty()) spdlog::info("frame {}: rendering it again: {}", frame, check.problem);
     }
     if (!complete.empty())

@@ -1,5 +1,5 @@
-// render_animation() across runs: resume, --overwrite, other settings, and Ctrl-C; a transparent
-// background in the written files.
+// render_animation() across runs: resume, --overwrite, a dead claim left beside a complete frame,
+// other settings, and Ctrl-C; a transparent background in the written files.
 #include "steadylight/render.h"
 
 #include <gtest/gtest.h>
@@ -16,9 +16,11 @@
 #include "steadylight/base/error.h"
 #include "steadylight/output/frame_names.h"
 #include "steadylight/output/image_writer.h"
+#include "steadylight/run/frame_claim.h"
 #include "steadylight/run/settings_file.h"
 #include "steadylight/scene/image_decoding.h"
 #include "support/input_error.h"
+#include "support/lock_files.h"
 
 namespace steadylight {
 namespace {
@@ -54,6 +56,20 @@ TEST_F(RenderResume, CompleteFramesAreSkippedUnlessOverwrite) {
     EXPECT_EQ(again.frames_skipped, 2);
     m_settings.overwrite = true;
     EXPECT_EQ(render_animation(m_settings).frames_written, (std::vector<int>{0, 1}));
+}
+
+// A process killed between claiming a frame and finding it complete leaves its claim beside the
+// complete frame: the next run removes it once its holder is dead, and leaves a live one alone.
+TEST_F(RenderResume, DeadClaimBesideACompleteFrameIsRemoved) {
+    render_animation(m_settings);
+    const std::string dead = frame_claim_name(m_settings.out_dir, "ball", 0),
+                      live = frame_claim_name(m_settings.out_dir, "ball", 1);
+    testing::write_lock_file(dead, "elsewhere", 4242, 300);
+    testing::write_lock_file(live, "elsewhere", 4243, 5);
+    const RenderSummary again = render_animation(m_settings);
+    EXPECT_EQ(again.frames_skipped, 2);
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_TRUE(fs::exists(live));
 }
 
 TEST_F(RenderResume, TruncatedFrameIsRenderedAgain) {
