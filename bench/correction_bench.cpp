@@ -1,0 +1,97 @@
+// L_t's correction of the static records (passes/record_correction.h) on its own, in process:
+// per scene the segment's static cache once, then at a few frames the frame's dynamic map as the
+// localized method makes it, and correct_static_cache run several times over it. Prints the best
+// and the median time of the runs (whole runs of the renderer move by a tenth from run to run on
+// a shared machine; a phase of 0.03 s inside them tells little), the records, the dynamic
+// photons, the photons a record's coarsest disc finds, and a checksum of the corrected records
+// (the sum of their irradiance) to tell a change of the correction that is exact from one that
+// is not. Asserts nothing.
+// Run: build/correction_bench [--scenes ball,table] [--frames N] [--size WxH] [--runs N]
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "scene_bench_options.h"
+#include "steadylight/base/stopwatch.h"
+#include "steadylight/passes/frame_photons.h"
+#include "steadylight/passes/record_correction.h"
+#include "steadylight/passes/segment_cache.h"
+#include "steadylight/passes/segment_pass.h"
+
+using namespace steadylight;
+
+namespace {
+
+using Options = SceneBenchOptions;
+
+/// The photons the records' coarsest discs find, per record.
+double found_per_record(const IrradianceCache& cache, const PhotonMap& dynamic, const CorrectionSettings& settings) {
+    const float coarsest = settings.radius * float(1 << (settings.levels - 1));
+    std::vector<Neighbour> found;
+    double sum = 0;
+    for (const IrradianceRecord& record : cache.records()) {
+        dynamic.within(record.p, coarsest, found);
+        sum += double(found.size());
+    }
+    return cache.records().empty() ? 0.0 : sum / double(cache.records().size());
+}
+
+/// The sum of every record's irradiance, in double.
+double checksum(const IrradianceCache& cache) {
+    double sum = 0;
+    for (const IrradianceRecord& record : cache.records()) sum += double(record.E.r) + record.E.g + record.E.b;
+    return sum;
+}
+
+void run_scene(const std::string& name, const Options& options) {
+    Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/" + name + ".json"));
+    scene.set_resolution(options.width, options.height);
+    RayTracer tracer(scene, scene.evaluate(0));
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    const PhotonMappingSettings photon;
+    const CorrectionSettings settings = LocalizedSettings{}.correction;
+    const int runs = std::max(1, options.number("runs", 7));
+    const Segment segment{0, scene.frame_count() - 1};
+    // As a localized render makes them: the static photon paths, the static cache from their
+    // photons, frames composing their maps from the paths.
+    std::shared_ptr<const StaticPhotonPaths> traced_paths = trace_segment_photon_paths(scene, tracer, segment, photon);
+    const StaticPhotonPaths* paths = traced_paths.get();
+    const StaticSolution solution{run_segment_pass(scene, tracer, segment, photon, paths), 0, false, "", traced_paths};
+
+    std::printf("\n%s, %dx%d, %ld static records, %d runs per frame\n", name.c_str(), options.width, options.height,
+                solution.records(), runs);
+    std::printf("%5s %10s %10s %12s %12s %16s\n", "frame", "best ms", "median ms", "dyn.photons", "found/record",
+                "checksum");
+    const int frames = std::max(1, std::min(options.frames, scene.frame_count()));
+    for (int i = 0; i < frames; ++i) {
+        // Frames spread over the animation, the first one left out (nothing has moved yet).
+        const int frame = std::min(scene.frame_count() - 1, 1 + i * std::max(1, (scene.frame_count() - 1) / frames));
+        const PlacedFrame placed(scene, tracer, bsdfs, frame);
+        const FrameContext& context = placed.context();
+        FrameStats stats;
+        const FramePhotons traced(context, photon, stats, paths, paths ? paths->irradiance.get() : nullptr,
+                                  ChangedValues::carried, solution.compose_photons);
+        const PhotonMap& dynamic = traced.maps.dynamic;
+        const std::vector<DiscProbes>& probes = solution.correction_coverage->probes(context, solution.cache, settings);
+        std::vector<double> seconds;
+        double sum = 0;
+        for (int run = 0; run < runs; ++run) {
+            const Stopwatch time;
+            const IrradianceCache corrected = correct_static_cache(solution.cache, dynamic, settings, probes);
+            seconds.push_back(time.elapsed_s());
+            sum = checksum(corrected);
+        }
+        std::sort(seconds.begin(), seconds.end());
+        std::printf("%5d %10.2f %10.2f %12zu %12.0f %16.9e\n", frame, 1e3 * seconds.front(),
+                    1e3 * seconds[seconds.size() / 2], dynamic.size(),
+                    found_per_record(solution.cache, dynamic, settings), sum);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options options = parse_scene_bench_options(argc, argv, 4);
+    for (const std::string& name : options.scenes) run_scene(name, options);
+    return 0;
+}
