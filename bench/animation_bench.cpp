@@ -36,11 +36,9 @@ struct Totals {
 };
 
 void run_scene(const std::string& name, const Options& options) {
-    Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/" + name + ".json"));
-    scene.set_resolution(options.width, options.height);
+    BenchScene opened(name, options);
+    auto& [scene, tracer, bsdfs] = opened;
     const int frames = std::min(options.frames, scene.frame_count());
-    RayTracer tracer(scene, scene.evaluate(0));
-    const Bsdfs bsdfs = make_bsdfs(scene);
     const PhotonMappingSettings photon_settings;
     const LocalizedSettings localized;
 

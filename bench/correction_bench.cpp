@@ -44,10 +44,8 @@ double checksum(const IrradianceCache& cache) {
 }
 
 void run_scene(const std::string& name, const Options& options) {
-    Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/" + name + ".json"));
-    scene.set_resolution(options.width, options.height);
-    RayTracer tracer(scene, scene.evaluate(0));
-    const Bsdfs bsdfs = make_bsdfs(scene);
+    BenchScene opened(name, options);
+    auto& [scene, tracer, bsdfs] = opened;
     const PhotonMappingSettings photon;
     const CorrectionSettings settings = LocalizedSettings{}.correction;
     const int runs = std::max(1, options.number("runs", 7));

@@ -147,10 +147,8 @@ void compare_methods(const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
 }
 
 void run_scene(const std::string& name, const Options& options) {
-    Scene scene(load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/" + name + ".json"));
-    scene.set_resolution(options.width, options.height);
-    RayTracer tracer(scene, scene.evaluate(0));
-    const Bsdfs bsdfs = make_bsdfs(scene);
+    BenchScene opened(name, options);
+    auto& [scene, tracer, bsdfs] = opened;
     const PhotonMappingSettings settings;
     const Stopwatch static_time;
     const auto paths = trace_segment_photon_paths(scene, tracer, {0, scene.frame_count() - 1}, settings);

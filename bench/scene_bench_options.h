@@ -1,5 +1,5 @@
 // The options the scene benchmarks share: --scenes a,b (of scenes/), --frames N, --size WxH,
-// and any other "--name N" as a number by name.
+// and any other "--name N" as a number by name; and a scene of scenes/ opened at that size.
 #pragma once
 
 #include <cstdio>
@@ -9,6 +9,10 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "steadylight/scene/scene.h"
+#include "steadylight/shading/frame_context.h"
+#include "steadylight/trace/ray_tracer.h"
 
 struct SceneBenchOptions {
     std::vector<std::string> scenes{"ball", "table"};
@@ -40,3 +44,24 @@ inline SceneBenchOptions parse_scene_bench_options(int argc, char** argv, int de
     }
     return o;
 }
+
+/// scenes/<name>.json at the options' size, with its ray tracer (at frame 0) and materials. The
+/// tracer refers to the scene: it stays where it is made.
+struct BenchScene {
+    steadylight::Scene scene;
+    steadylight::RayTracer tracer;
+    steadylight::Bsdfs bsdfs;
+
+    BenchScene(const std::string& name, const SceneBenchOptions& options)
+        : scene(sized(name, options)), tracer(scene, scene.evaluate(0)), bsdfs(steadylight::make_bsdfs(scene)) {}
+    BenchScene(const BenchScene&) = delete;
+    BenchScene& operator=(const BenchScene&) = delete;
+
+private:
+    static steadylight::Scene sized(const std::string& name, const SceneBenchOptions& options) {
+        steadylight::Scene scene(
+            steadylight::load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/" + name + ".json"));
+        scene.set_resolution(options.width, options.height);
+        return scene;
+    }
+};
