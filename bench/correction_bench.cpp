@@ -24,9 +24,9 @@ namespace {
 
 using Options = SceneBenchOptions;
 
-/// The photons the records' coarsest discs find, per record.
+/// The photons the settings' coarsest disc finds about a record, per record.
 double found_per_record(const IrradianceCache& cache, const PhotonMap& dynamic, const CorrectionSettings& settings) {
-    const float coarsest = settings.radius * float(1 << (settings.levels - 1));
+    const float coarsest = level_radius(settings, settings.levels - 1);
     std::vector<Neighbour> found;
     double sum = 0;
     for (const IrradianceRecord& record : cache.records()) {

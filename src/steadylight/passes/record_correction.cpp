@@ -12,8 +12,6 @@
 namespace steadylight {
 namespace {
 
-float level_radius(const CorrectionSettings& settings, int level) { return settings.radius * float(1 << level); }
-
 /// How much of a detail to keep: 0 within noise_sigmas standard errors of zero, all of it beyond
 /// signal_sigmas, in between the share that makes the kept detail grow linearly from 0 to whole
 /// (firm shrinkage).
@@ -35,6 +33,8 @@ constexpr float min_kernel_share = 0.25f;
 float slab_half_width(float radius) { return radius / 4; }
 
 }  // namespace
+
+float level_radius(const CorrectionSettings& settings, int level) { return settings.radius * float(1 << level); }
 
 const std::vector<DiscProbes>& CorrectionCoverage::probes(const FrameContext& context, const IrradianceCache& cache,
                                                           const CorrectionSettings& settings) const {

@@ -61,6 +61,9 @@ private:
     mutable int m_levels = 0;
 };
 
+/// The radius of level `level`'s disc: settings.radius at the finest, doubling per level.
+float level_radius(const CorrectionSettings& settings, int level);
+
 /// The share of the correction kernel's weight in the cells `probes` found on the surface.
 float kernel_share(const DiscProbes& probes);
 
