@@ -3,11 +3,14 @@
 // localized method makes it, and correct_static_cache run several times over it. Prints the best
 // and the median time of the runs (whole runs of the renderer move by a tenth from run to run on
 // a shared machine; a phase of 0.03 s inside them tells little), the records, the dynamic
-// photons, the photons a record's coarsest disc finds, and a checksum of the corrected records
-// (the sum of their irradiance) to tell a change of the correction that is exact from one that
-// is not. Asserts nothing.
+// photons, what a record reads (its photons within the next finer disc and the clusters within
+// the coarsest), how far the correction from clusters is from the one from every photon one by
+// one (the RMS over the records of their difference, over the RMS of the correction), and a
+// checksum of the corrected records (the sum of their irradiance) to tell a change of the
+// correction that is exact from one that is not. Asserts nothing.
 // Run: build/correction_bench [--scenes ball,table] [--frames N] [--size WxH] [--runs N]
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -24,16 +27,37 @@ namespace {
 
 using Options = SceneBenchOptions;
 
-/// The photons the settings' coarsest disc finds about a record, per record.
-double found_per_record(const IrradianceCache& cache, const PhotonMap& dynamic, const CorrectionSettings& settings) {
+/// Per record, the photons within the settings' next finer disc and the clusters within the
+/// coarsest: what a record with every level reads (an upper bound: a record with fewer reads less).
+double read_per_record(const IrradianceCache& cache, const CorrectionPhotons& photons,
+                       const CorrectionSettings& settings) {
     const float coarsest = level_radius(settings, settings.levels - 1);
+    const float finer = level_radius(settings, std::max(0, settings.levels - 2));
     std::vector<Neighbour> found;
     double sum = 0;
     for (const IrradianceRecord& record : cache.records()) {
-        dynamic.within(record.p, coarsest, found);
+        photons.map().within(record.p, finer, found);
+        sum += double(found.size());
+        photons.clusters_within(record.p, coarsest, found);
         sum += double(found.size());
     }
     return cache.records().empty() ? 0.0 : sum / double(cache.records().size());
+}
+
+/// The RMS over the records of the correction from clusters less the one from every photon one by
+/// one, over the RMS of the latter (luminance).
+double clustering_difference(const IrradianceCache& cache, const PhotonMap& dynamic, const CorrectionSettings& settings,
+                             const std::vector<DiscProbes>& probes) {
+    const CorrectionPhotons clustered(dynamic, settings), one_by_one(dynamic, settings, 0);
+    double difference2 = 0, correction2 = 0;
+    for (size_t i = 0; i < cache.records().size(); ++i) {
+        const IrradianceRecord& record = cache.records()[i];
+        const DiscProbes* discs = &probes[i * size_t(settings.levels)];
+        const double c = luminance(correction_at(clustered, record.p, record.n, settings, discs));
+        const double e = luminance(correction_at(one_by_one, record.p, record.n, settings, discs));
+        difference2 += (c - e) * (c - e), correction2 += e * e;
+    }
+    return correction2 > 0 ? std::sqrt(difference2 / correction2) : 0.0;
 }
 
 /// The sum of every record's irradiance, in double.
@@ -58,8 +82,8 @@ void run_scene(const std::string& name, const Options& options) {
 
     std::printf("\n%s, %dx%d, %ld static records, %d runs per frame\n", name.c_str(), options.width, options.height,
                 solution.records(), runs);
-    std::printf("%5s %10s %10s %12s %12s %16s\n", "frame", "best ms", "median ms", "dyn.photons", "found/record",
-                "checksum");
+    std::printf("%5s %10s %10s %12s %12s %12s %16s\n", "frame", "best ms", "median ms", "dyn.photons", "read/record",
+                "vs one by one", "checksum");
     const int frames = std::max(1, std::min(options.frames, scene.frame_count()));
     for (int i = 0; i < frames; ++i) {
         // Frames spread over the animation, the first one left out (nothing has moved yet).
@@ -80,9 +104,10 @@ void run_scene(const std::string& name, const Options& options) {
             sum = checksum(corrected);
         }
         std::sort(seconds.begin(), seconds.end());
-        std::printf("%5d %10.2f %10.2f %12zu %12.0f %16.9e\n", frame, 1e3 * seconds.front(),
+        std::printf("%5d %10.2f %10.2f %12zu %12.0f %11.2f%% %16.9e\n", frame, 1e3 * seconds.front(),
                     1e3 * seconds[seconds.size() / 2], dynamic.size(),
-                    found_per_record(solution.cache, dynamic, settings), sum);
+                    read_per_record(solution.cache, CorrectionPhotons(dynamic, settings), settings),
+                    100 * clustering_difference(solution.cache, dynamic, settings, probes), sum);
     }
 }
 

@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
+#include "steadylight/base/rng.h"
 #include "steadylight/photons/surface_coverage.h"
 
 namespace steadylight {
@@ -71,7 +74,59 @@ float kernel_share(const DiscProbes& probes) {
     return float(3 * inner + outer) / float(4 * DiscProbes::sectors);
 }
 
-Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
+CorrectionPhotons::CorrectionPhotons(const PhotonMap& dynamic, const CorrectionSettings& settings, float cell)
+    : m_map(dynamic) {
+    if (cell < 0) cell = level_radius(settings, settings.levels - 1) / 8;
+    m_summed_by_cells = cell > 0 && settings.levels >= 2;
+    if (!m_summed_by_cells) return;
+    const std::vector<Photon>& photons = dynamic.photons();
+    // A cell's photons by the direction of their normals in steps of an eighth: a flat surface's
+    // photons share one, a curved one's split where the normal filter would tell them apart.
+    struct Key {
+        int64_t x, y, z;
+        int32_t n[3];
+        bool operator==(const Key&) const = default;
+    };
+    struct KeyHash {
+        size_t operator()(const Key& k) const {
+            const uint64_t normal = uint64_t(k.n[0] + 8) | uint64_t(k.n[1] + 8) << 8 | uint64_t(k.n[2] + 8) << 16;
+            return size_t(hash_ids(uint64_t(k.x), uint64_t(k.y), uint64_t(k.z), normal));
+        }
+    };
+    std::unordered_map<Key, uint32_t, KeyHash> cluster_of;
+    std::vector<Vec3> position_sums, normal_sums;
+    std::vector<int> counts;
+    for (const Photon& photon : photons) {
+        const Key key{int64_t(std::floor(photon.p.x / cell)),
+                      int64_t(std::floor(photon.p.y / cell)),
+                      int64_t(std::floor(photon.p.z / cell)),
+                      {int32_t(std::lround(photon.n.x * 8)), int32_t(std::lround(photon.n.y * 8)),
+                       int32_t(std::lround(photon.n.z * 8))}};
+        const uint32_t at = cluster_of.try_emplace(key, uint32_t(m_clusters.size())).first->second;
+        if (at == m_clusters.size()) {
+            m_clusters.emplace_back();
+            position_sums.emplace_back(), normal_sums.emplace_back(), counts.push_back(0);
+        }
+        Cluster& cluster = m_clusters[at];
+        const float y = luminance(photon.power);
+        cluster.power += photon.power;
+        cluster.luminance2 += y * y;
+        position_sums[at] += photon.p, normal_sums[at] += photon.n, ++counts[at];
+    }
+    std::vector<Vec3> centroids(m_clusters.size());
+    for (size_t c = 0; c < m_clusters.size(); ++c) {
+        m_clusters[c].p = position_sums[c] / float(counts[c]);
+        m_clusters[c].n = normalize(normal_sums[c]);
+        centroids[c] = m_clusters[c].p;
+    }
+    m_index = PointIndex(centroids);
+}
+
+void CorrectionPhotons::clusters_within(Vec3 p, float radius, std::vector<Neighbour>& out) const {
+    m_index.within(p, radius * radius, out);
+}
+
+Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
                   const DiscProbes* probes) {
     SL_CHECK(settings.levels >= 1 && settings.levels <= max_correction_levels);
     // The levels up to the first whose disc lies less than min_kernel_share on the surface.
@@ -82,9 +137,6 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
         if (share[levels] < min_kernel_share) break;
     }
     if (levels == 0) return {};
-    thread_local std::vector<Neighbour> found;
-    dynamic.within(p, level_radius(settings, levels - 1), found);
-    if (found.empty()) return {};
     // Level l's kernel: (1 - d^2 / r_l^2) 2 / (pi r_l^2 share_l) inside r_l, share_l its weight
     // on the surface; it integrates to 1 over the part of the disc on the surface.
     float radius[max_correction_levels], inverse_r2[max_correction_levels], scale[max_correction_levels];
@@ -93,26 +145,57 @@ Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSett
         inverse_r2[l] = 1 / (radius[l] * radius[l]);
         scale[l] = 2 * inverse_r2[l] / (pi * share[l]);
     }
+    const auto kernel = [&](int l, float offset, float distance2) {
+        const bool in_disc = offset <= slab_half_width(radius[l]);
+        return in_disc ? std::max(0.0f, 1 - distance2 * inverse_r2[l]) * scale[l] : 0.0f;
+    };
     Rgb detail[max_correction_levels];
     float variance[max_correction_levels] = {};
+    // A record with every level reads the coarsest from the clusters, and its photons one by one
+    // only within the next finer disc. Its details are still each level's estimate less the next
+    // coarser one's over every photon: the next finer level's detail takes the clusters' estimate
+    // off, and its variance, the squared weights (k_finer - k_coarsest)^2 of every photon in the
+    // coarsest disc, is (k_finer - k_coarsest)^2 - k_coarsest^2 summed over the photons within
+    // the finer disc plus the clusters' k_coarsest^2.
+    const int clustered = dynamic.summed_by_cells() && levels == settings.levels ? levels - 1 : -1;
+    const int photon_levels = clustered < 0 ? levels : clustered;
+    thread_local std::vector<Neighbour> found;
+    dynamic.map().within(p, radius[photon_levels - 1], found);
+    float clustered_variance_offset = 0;
     for (const Neighbour& neighbour : found) {
-        const Photon& photon = dynamic.photons()[neighbour.index];
+        const Photon& photon = dynamic.map().photons()[neighbour.index];
         if (!same_side(photon, n)) continue;
         const float y = luminance(photon.power);
         const float offset = std::abs(dot(photon.p - p, n));
         // Finer discs lie inside coarser ones, slab and all: once a level's kernel is 0, so is
         // every finer one's, and their details gain exactly 0. Most photons lie in the coarsest
         // disc alone (three quarters of its area).
-        float coarser = 0;  // the next coarser level's kernel; 0 past the coarsest
-        for (int l = levels - 1; l >= 0; --l) {
-            const bool in_disc = offset <= slab_half_width(radius[l]);
-            const float kernel = in_disc ? std::max(0.0f, 1 - neighbour.distance2 * inverse_r2[l]) * scale[l] : 0.0f;
-            const float weight = kernel - coarser;
+        float coarser = 0;  // the next coarser level's kernel; 0 past the coarsest read here
+        for (int l = photon_levels - 1; l >= 0; --l) {
+            const float k = kernel(l, offset, neighbour.distance2);
+            const float weight = k - coarser;
             detail[l] += photon.power * weight;
-            variance[l] += (y * weight) * (y * weight);
-            if (kernel == 0) break;
-            coarser = kernel;
+            if (l == clustered - 1) {
+                const float coarsest = kernel(clustered, offset, neighbour.distance2);
+                clustered_variance_offset += y * y * ((k - coarsest) * (k - coarsest) - coarsest * coarsest);
+            } else {
+                variance[l] += (y * weight) * (y * weight);
+            }
+            if (k == 0) break;
+            coarser = k;
         }
+    }
+    if (clustered >= 0) {
+        dynamic.clusters_within(p, radius[clustered], found);
+        for (const Neighbour& neighbour : found) {
+            const CorrectionPhotons::Cluster& cluster = dynamic.clusters()[neighbour.index];
+            if (!(dot(cluster.n, n) > 0.5f)) continue;  // same_side
+            const float k = kernel(clustered, std::abs(dot(cluster.p - p, n)), neighbour.distance2);
+            detail[clustered] += cluster.power * k;
+            variance[clustered] += cluster.luminance2 * k * k;
+        }
+        detail[clustered - 1] = detail[clustered - 1] - detail[clustered];
+        variance[clustered - 1] = std::max(0.0f, clustered_variance_offset + variance[clustered]);
     }
     Rgb sum;
     for (int l = 0; l < levels; ++l)
@@ -127,11 +210,12 @@ IrradianceCache correct_static_cache(const IrradianceCache& static_cache, const 
     if (changed) changed->assign(records.size(), 0);
     if (dynamic.size() > 0) {
         SL_CHECK_EQ(probes.size(), records.size() * size_t(settings.levels));
+        const CorrectionPhotons photons(dynamic, settings);
         parallel_for_chunks(long(records.size()), 64, [&](long begin, long end) {
             for (long i = begin; i < end; ++i) {
                 IrradianceRecord& r = records[size_t(i)];
                 const Rgb delta =
-                    correction_at(dynamic, r.p, r.n, settings, &probes[size_t(i) * size_t(settings.levels)]);
+                    correction_at(photons, r.p, r.n, settings, &probes[size_t(i) * size_t(settings.levels)]);
                 if (delta == Rgb{}) continue;  // the record as it is, bit for bit
                 const Rgb E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g),
                                std::max(0.0f, r.E.b + delta.b)};

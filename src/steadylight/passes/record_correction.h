@@ -32,7 +32,13 @@
 //   on the surface are no estimate of its change (a 2 m disc on a 0.3 m ball: the few photons on
 //   its top divided by a share of a few per cent made blotches): a record uses its levels up to
 //   the first such one, and one whose finest disc is such is not corrected (a small object near
-//   the moving one takes L_y, by the influence there).
+//   the moving one takes L_y, by the influence there);
+// - the coarsest level reads the photons summed by cells an eighth of its radius wide
+//   (CorrectionPhotons), the finer ones each photon: the coarsest disc holds three quarters of
+//   the photons a record reads, and its kernel is so wide that a cell's photons all weigh about
+//   what its centroid weighs (a cell's shift of a photon changes its weight by at most 1/8, and
+//   by about nothing on average). A record's own search then reaches half as far and finds a
+//   quarter of the photons. docs/localized.md ("A steady correction") has what it changed.
 #pragma once
 
 #include <memory>
@@ -42,6 +48,7 @@
 #include "steadylight/irradiance/irradiance_cache.h"
 #include "steadylight/passes/localized_settings.h"
 #include "steadylight/photons/photon_map.h"
+#include "steadylight/photons/point_index.h"
 #include "steadylight/shading/frame_context.h"
 
 namespace steadylight {
@@ -67,9 +74,40 @@ float level_radius(const CorrectionSettings& settings, int level);
 /// The share of the correction kernel's weight in the cells `probes` found on the surface.
 float kernel_share(const DiscProbes& probes);
 
+/// The dynamic photons as the correction reads them: the map for the finer levels, and for the
+/// coarsest level the photons summed by cells (and by the direction of their normals, so that a
+/// floor's and a wall's photons in one corner cell stay apart).
+class CorrectionPhotons {
+public:
+    /// The photons of one cell whose normals point alike: their centroid, mean normal, summed
+    /// power and summed squared luminance (for the level's standard error).
+    struct Cluster {
+        Vec3 p, n;
+        Rgb power;
+        float luminance2 = 0;
+    };
+
+    /// Cells of `cell` scene units (default: an eighth of the settings' coarsest radius); 0 sums
+    /// nothing: every level reads every photon one by one.
+    CorrectionPhotons(const PhotonMap& dynamic, const CorrectionSettings& settings, float cell = -1);
+
+    const PhotonMap& map() const { return m_map; }
+    /// Whether the coarsest level reads the clusters (the settings have at least two levels).
+    bool summed_by_cells() const { return m_summed_by_cells; }
+    const std::vector<Cluster>& clusters() const { return m_clusters; }
+    /// Every cluster whose centroid lies within `radius` of p.
+    void clusters_within(Vec3 p, float radius, std::vector<Neighbour>& out) const;
+
+private:
+    const PhotonMap& m_map;
+    bool m_summed_by_cells = false;
+    std::vector<Cluster> m_clusters;
+    PointIndex m_index;  // over the clusters' centroids
+};
+
 /// The irradiance change at p (normal n) that the dynamic photons say is there, beyond their
 /// noise (above). `probes` are the point's discs per level (nullptr: whole discs).
-Rgb correction_at(const PhotonMap& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
+Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
                   const DiscProbes* probes);
 
 /// L_t's cache, the corrected cache: the static records with correction_at added at each
