@@ -3,8 +3,8 @@
 // localized method makes it, and correct_static_cache run several times over it. Prints the best
 // and the median time of the runs (whole runs of the renderer move by a tenth from run to run on
 // a shared machine; a phase of 0.03 s inside them tells little), the records, the dynamic
-// photons, what a record reads (its photons within the next finer disc and the clusters within
-// the coarsest), how far the correction from clusters is from the one from every photon one by
+// photons, what a record reads (its photons within the finest disc that reads them one by one
+// and the cells within the coarsest), how far the correction from clusters is from the one from every photon one by
 // one (the RMS over the records of their difference, over the RMS of the correction), and a
 // checksum of the corrected records (the sum of their irradiance) to tell a change of the
 // correction that is exact from one that is not. Asserts nothing.
@@ -27,16 +27,17 @@ namespace {
 
 using Options = SceneBenchOptions;
 
-/// Per record, the photons within the settings' next finer disc and the clusters within the
-/// coarsest: what a record with every level reads (an upper bound: a record with fewer reads less).
+/// Per record, the photons within the finest disc that reads them one by one and the cells within
+/// the coarsest: what a record with every level reads (an upper bound: a record with fewer reads
+/// less).
 double read_per_record(const IrradianceCache& cache, const CorrectionPhotons& photons,
                        const CorrectionSettings& settings) {
     const float coarsest = level_radius(settings, settings.levels - 1);
-    const float finer = level_radius(settings, std::max(0, settings.levels - 2));
+    const float one_by_one = level_radius(settings, first_summed_level(settings) - 1);
     std::vector<Neighbour> found;
     double sum = 0;
     for (const IrradianceRecord& record : cache.records()) {
-        photons.map().within(record.p, finer, found);
+        photons.map().within(record.p, one_by_one, found);
         sum += double(found.size());
         photons.clusters_within(record.p, coarsest, found);
         sum += double(found.size());

@@ -39,6 +39,8 @@ float slab_half_width(float radius) { return radius / 4; }
 
 float level_radius(const CorrectionSettings& settings, int level) { return settings.radius * float(1 << level); }
 
+int first_summed_level(const CorrectionSettings& settings) { return std::max(1, settings.levels - 2); }
+
 const std::vector<DiscProbes>& CorrectionCoverage::probes(const FrameContext& context, const IrradianceCache& cache,
                                                           const CorrectionSettings& settings) const {
     std::call_once(m_once, [&] {
@@ -76,7 +78,7 @@ float kernel_share(const DiscProbes& probes) {
 
 CorrectionPhotons::CorrectionPhotons(const PhotonMap& dynamic, const CorrectionSettings& settings, float cell)
     : m_map(dynamic) {
-    if (cell < 0) cell = level_radius(settings, settings.levels - 1) / 8;
+    if (cell < 0) cell = level_radius(settings, first_summed_level(settings)) / 4;
     m_summed_by_cells = cell > 0 && settings.levels >= 2;
     if (!m_summed_by_cells) return;
     const std::vector<Photon>& photons = dynamic.photons();
@@ -94,30 +96,40 @@ CorrectionPhotons::CorrectionPhotons(const PhotonMap& dynamic, const CorrectionS
         }
     };
     std::unordered_map<Key, uint32_t, KeyHash> cluster_of;
+    std::vector<uint32_t> photon_cluster(photons.size());
     std::vector<Vec3> position_sums, normal_sums;
     std::vector<int> counts;
-    for (const Photon& photon : photons) {
+    for (size_t i = 0; i < photons.size(); ++i) {
+        const Photon& photon = photons[i];
         const Key key{int64_t(std::floor(photon.p.x / cell)),
                       int64_t(std::floor(photon.p.y / cell)),
                       int64_t(std::floor(photon.p.z / cell)),
                       {int32_t(std::lround(photon.n.x * 8)), int32_t(std::lround(photon.n.y * 8)),
                        int32_t(std::lround(photon.n.z * 8))}};
-        const uint32_t at = cluster_of.try_emplace(key, uint32_t(m_clusters.size())).first->second;
-        if (at == m_clusters.size()) {
-            m_clusters.emplace_back();
-            position_sums.emplace_back(), normal_sums.emplace_back(), counts.push_back(0);
-        }
-        Cluster& cluster = m_clusters[at];
-        const float y = luminance(photon.power);
-        cluster.power += photon.power;
-        cluster.luminance2 += y * y;
+        const uint32_t at = cluster_of.try_emplace(key, uint32_t(position_sums.size())).first->second;
+        if (at == position_sums.size()) position_sums.emplace_back(), normal_sums.emplace_back(), counts.push_back(0);
+        photon_cluster[i] = at;
         position_sums[at] += photon.p, normal_sums[at] += photon.n, ++counts[at];
     }
+    m_clusters.resize(position_sums.size());
     std::vector<Vec3> centroids(m_clusters.size());
     for (size_t c = 0; c < m_clusters.size(); ++c) {
-        m_clusters[c].p = position_sums[c] / float(counts[c]);
+        m_clusters[c].p = centroids[c] = position_sums[c] / float(counts[c]);
         m_clusters[c].n = normalize(normal_sums[c]);
-        centroids[c] = m_clusters[c].p;
+    }
+    // The moments about the centroid, which make a quadratic kernel's sum exact.
+    for (size_t i = 0; i < photons.size(); ++i) {
+        const Photon& photon = photons[i];
+        Cluster& cluster = m_clusters[photon_cluster[i]];
+        const Vec3 offset = photon.p - cluster.p;
+        const float y = luminance(photon.power);
+        cluster.power += photon.power;
+        cluster.power_offset[0] += photon.power * offset.x;
+        cluster.power_offset[1] += photon.power * offset.y;
+        cluster.power_offset[2] += photon.power * offset.z;
+        cluster.power_offset2 += photon.power * length2(offset);
+        cluster.luminance2 += y * y;
+        cluster.extent = std::max(cluster.extent, length(offset));
     }
     m_index = PointIndex(centroids);
 }
@@ -151,17 +163,18 @@ Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const Correc
     };
     Rgb detail[max_correction_levels];
     float variance[max_correction_levels] = {};
-    // A record with every level reads the coarsest from the clusters, and its photons one by one
-    // only within the next finer disc. Its details are still each level's estimate less the next
-    // coarser one's over every photon: the next finer level's detail takes the clusters' estimate
-    // off, and its variance, the squared weights (k_finer - k_coarsest)^2 of every photon in the
-    // coarsest disc, is (k_finer - k_coarsest)^2 - k_coarsest^2 summed over the photons within
-    // the finer disc plus the clusters' k_coarsest^2.
-    const int clustered = dynamic.summed_by_cells() && levels == settings.levels ? levels - 1 : -1;
-    const int photon_levels = clustered < 0 ? levels : clustered;
+    // A record with every level reads the coarse levels (from first_summed on) from the cells,
+    // and its photons one by one only within the finer discs. Its details are still each level's
+    // estimate less the next coarser one's over every photon: the coarse levels' details and
+    // variances come from the cells alone; the next finer level's detail takes the cells' estimate
+    // off, and its variance, the squared weights (k_finer - k_summed)^2 of every photon, is
+    // (k_finer - k_summed)^2 - k_summed^2 summed over the photons within the finer disc plus the
+    // cells' k_summed^2.
+    const int first_summed =
+        dynamic.summed_by_cells() && levels == settings.levels ? first_summed_level(settings) : levels;
     thread_local std::vector<Neighbour> found;
-    dynamic.map().within(p, radius[photon_levels - 1], found);
-    float clustered_variance_offset = 0;
+    dynamic.map().within(p, radius[first_summed - 1], found);
+    float summed_variance_offset = 0;
     for (const Neighbour& neighbour : found) {
         const Photon& photon = dynamic.map().photons()[neighbour.index];
         if (!same_side(photon, n)) continue;
@@ -171,13 +184,13 @@ Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const Correc
         // every finer one's, and their details gain exactly 0. Most photons lie in the coarsest
         // disc alone (three quarters of its area).
         float coarser = 0;  // the next coarser level's kernel; 0 past the coarsest read here
-        for (int l = photon_levels - 1; l >= 0; --l) {
+        for (int l = first_summed - 1; l >= 0; --l) {
             const float k = kernel(l, offset, neighbour.distance2);
             const float weight = k - coarser;
             detail[l] += photon.power * weight;
-            if (l == clustered - 1) {
-                const float coarsest = kernel(clustered, offset, neighbour.distance2);
-                clustered_variance_offset += y * y * ((k - coarsest) * (k - coarsest) - coarsest * coarsest);
+            if (l == first_summed - 1 && first_summed < levels) {
+                const float summed = kernel(first_summed, offset, neighbour.distance2);
+                summed_variance_offset += y * y * ((k - summed) * (k - summed) - summed * summed);
             } else {
                 variance[l] += (y * weight) * (y * weight);
             }
@@ -185,17 +198,40 @@ Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const Correc
             coarser = k;
         }
     }
-    if (clustered >= 0) {
-        dynamic.clusters_within(p, radius[clustered], found);
+    if (first_summed < levels) {
+        Rgb estimate[max_correction_levels + 1];  // per summed level, over every photon
+        float summed_variance = 0;                // the cells' k_first_summed^2
+        dynamic.clusters_within(p, radius[levels - 1], found);
         for (const Neighbour& neighbour : found) {
             const CorrectionPhotons::Cluster& cluster = dynamic.clusters()[neighbour.index];
             if (!(dot(cluster.n, n) > 0.5f)) continue;  // same_side
-            const float k = kernel(clustered, std::abs(dot(cluster.p - p, n)), neighbour.distance2);
-            detail[clustered] += cluster.power * k;
-            variance[clustered] += cluster.luminance2 * k * k;
+            const float offset = std::abs(dot(cluster.p - p, n));
+            const float distance = std::sqrt(neighbour.distance2);
+            const Vec3 to = cluster.p - p;
+            float coarser = 0;
+            for (int l = levels - 1; l >= first_summed; --l) {
+                const float k = kernel(l, offset, neighbour.distance2);  // at the centroid
+                if (distance + cluster.extent < radius[l] && offset + cluster.extent <= slab_half_width(radius[l])) {
+                    // Wholly inside the disc and its slab: the sum of P_j (1 - |x_j - p|^2 / r^2)
+                    // from the moments, |x_j - p|^2 = |x_j - c|^2 + 2 (x_j - c) . (c - p) + |c - p|^2.
+                    const Rgb distance2_sum = cluster.power_offset2 +
+                                              (cluster.power_offset[0] * to.x + cluster.power_offset[1] * to.y +
+                                               cluster.power_offset[2] * to.z) *
+                                                  2.0f +
+                                              cluster.power * neighbour.distance2;
+                    estimate[l] += (cluster.power - distance2_sum * inverse_r2[l]) * scale[l];
+                } else {
+                    estimate[l] += cluster.power * k;  // across the rim: as its centroid
+                }
+                variance[l] += cluster.luminance2 * (k - coarser) * (k - coarser);
+                if (l == first_summed) summed_variance += cluster.luminance2 * k * k;
+                if (k == 0) break;
+                coarser = k;
+            }
         }
-        detail[clustered - 1] = detail[clustered - 1] - detail[clustered];
-        variance[clustered - 1] = std::max(0.0f, clustered_variance_offset + variance[clustered]);
+        for (int l = first_summed; l < levels; ++l) detail[l] = estimate[l] - estimate[l + 1];
+        detail[first_summed - 1] = detail[first_summed - 1] - estimate[first_summed];
+        variance[first_summed - 1] = std::max(0.0f, summed_variance_offset + summed_variance);
     }
     Rgb sum;
     for (int l = 0; l < levels; ++l)

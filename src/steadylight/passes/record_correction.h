@@ -33,12 +33,11 @@
 //   its top divided by a share of a few per cent made blotches): a record uses its levels up to
 //   the first such one, and one whose finest disc is such is not corrected (a small object near
 //   the moving one takes L_y, by the influence there);
-// - the coarsest level reads the photons summed by cells an eighth of its radius wide
-//   (CorrectionPhotons), the finer ones each photon: the coarsest disc holds three quarters of
-//   the photons a record reads, and its kernel is so wide that a cell's photons all weigh about
-//   what its centroid weighs (a cell's shift of a photon changes its weight by at most 1/8, and
-//   by about nothing on average). A record's own search then reaches half as far and finds a
-//   quarter of the photons. docs/localized.md ("A steady correction") has what it changed.
+// - the two coarsest levels read the photons summed by cells (CorrectionPhotons), the finer ones
+//   each photon: the coarse discs hold 15/16 of the photons a record reads. The kernel is a
+//   quadratic in a photon's position, so a cell wholly inside a disc sums exactly from its
+//   moments; a cell across the rim counts as its centroid. A record's own search then reaches a
+//   quarter as far. docs/localized.md ("A steady correction") has what it changed.
 #pragma once
 
 #include <memory>
@@ -71,6 +70,10 @@ private:
 /// The radius of level `level`'s disc: settings.radius at the finest, doubling per level.
 float level_radius(const CorrectionSettings& settings, int level);
 
+/// The finest level that reads the photons summed by cells (CorrectionPhotons): the two coarsest,
+/// never the finest.
+int first_summed_level(const CorrectionSettings& settings);
+
 /// The share of the correction kernel's weight in the cells `probes` found on the surface.
 float kernel_share(const DiscProbes& probes);
 
@@ -79,12 +82,14 @@ float kernel_share(const DiscProbes& probes);
 /// floor's and a wall's photons in one corner cell stay apart).
 class CorrectionPhotons {
 public:
-    /// The photons of one cell whose normals point alike: their centroid, mean normal, summed
-    /// power and summed squared luminance (for the level's standard error).
+    /// The photons of one cell whose normals point alike: their centroid c and mean normal, their
+    /// summed power, power times offset x_j - c (per axis) and power times squared offset (the
+    /// kernel's sum over a cluster wholly inside a disc is exact from these), the summed squared
+    /// luminance (for the level's standard error), and the farthest photon's distance from c.
     struct Cluster {
         Vec3 p, n;
-        Rgb power;
-        float luminance2 = 0;
+        Rgb power, power_offset[3], power_offset2;
+        float luminance2 = 0, extent = 0;
     };
 
     /// Cells of `cell` scene units (default: an eighth of the settings' coarsest radius); 0 sums
