@@ -4,10 +4,10 @@
 // and the median time of the runs (whole runs of the renderer move by a tenth from run to run on
 // a shared machine; a phase of 0.03 s inside them tells little), the records, the dynamic
 // photons, what a record reads (its photons within the finest disc that reads them one by one
-// and the cells within the coarsest), how far the correction from clusters is from the one from every photon one by
-// one (the RMS over the records of their difference, over the RMS of the correction), and a
-// checksum of the corrected records (the sum of their irradiance) to tell a change of the
-// correction that is exact from one that is not. Asserts nothing.
+// and the cells within the coarsest), how far the correction from cells is from the one of
+// every photon one by one (the RMS over the records of their difference, over the RMS of the
+// correction), and a checksum of the corrected records (the sum of their irradiance) to tell a
+// change of the correction that is exact from one that is not. Asserts nothing.
 // Run: build/correction_bench [--scenes ball,table] [--frames N] [--size WxH] [--runs N]
 #include <algorithm>
 #include <cmath>
@@ -45,8 +45,8 @@ double read_per_record(const IrradianceCache& cache, const CorrectionPhotons& ph
     return cache.records().empty() ? 0.0 : sum / double(cache.records().size());
 }
 
-/// The RMS over the records of the correction from clusters less the one from every photon one by
-/// one, over the RMS of the latter (luminance).
+/// The RMS over the records of the correction from cells less the one of every photon one by one,
+/// over the RMS of the latter (luminance).
 double clustering_difference(const IrradianceCache& cache, const PhotonMap& dynamic, const CorrectionSettings& settings,
                              const std::vector<DiscProbes>& probes) {
     const CorrectionPhotons clustered(dynamic, settings), one_by_one(dynamic, settings, 0);

@@ -78,8 +78,8 @@ int first_summed_level(const CorrectionSettings& settings);
 float kernel_share(const DiscProbes& probes);
 
 /// The dynamic photons as the correction reads them: the map for the finer levels, and for the
-/// coarsest level the photons summed by cells (and by the direction of their normals, so that a
-/// floor's and a wall's photons in one corner cell stay apart).
+/// coarse levels (first_summed_level on) the photons summed by cells, and by the direction of
+/// their normals, so that a floor's and a wall's photons in one corner cell stay apart.
 class CorrectionPhotons {
 public:
     /// The photons of one cell whose normals point alike: their centroid c and mean normal, their
@@ -92,12 +92,12 @@ public:
         float luminance2 = 0, extent = 0;
     };
 
-    /// Cells of `cell` scene units (default: an eighth of the settings' coarsest radius); 0 sums
-    /// nothing: every level reads every photon one by one.
+    /// Cells of `cell` scene units (default: a quarter of the first summed level's radius); 0
+    /// sums nothing: every level reads every photon one by one.
     CorrectionPhotons(const PhotonMap& dynamic, const CorrectionSettings& settings, float cell = -1);
 
     const PhotonMap& map() const { return m_map; }
-    /// Whether the coarsest level reads the clusters (the settings have at least two levels).
+    /// Whether the coarse levels read the clusters (the settings have at least two levels).
     bool summed_by_cells() const { return m_summed_by_cells; }
     const std::vector<Cluster>& clusters() const { return m_clusters; }
     /// Every cluster whose centroid lies within `radius` of p.
