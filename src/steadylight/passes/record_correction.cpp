@@ -204,7 +204,7 @@ Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const Correc
         dynamic.clusters_within(p, radius[levels - 1], found);
         for (const Neighbour& neighbour : found) {
             const CorrectionPhotons::Cluster& cluster = dynamic.clusters()[neighbour.index];
-            if (!(dot(cluster.n, n) > 0.5f)) continue;  // same_side
+            if (!same_side(cluster.n, n)) continue;
             const float offset = std::abs(dot(cluster.p - p, n));
             const float distance = std::sqrt(neighbour.distance2);
             const Vec3 to = cluster.p - p;

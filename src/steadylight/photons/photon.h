@@ -24,9 +24,13 @@ inline bool same_bits(const Photon& a, const Photon& b) {
     return std::memcmp(&a, &b, offsetof(Photon, bounce)) == 0 && a.bounce == b.bounce;
 }
 
-/// Whether a density estimate at a point of normal n counts the photon: photons arriving on the
-/// other side of a thin wall, or on a differently oriented surface nearby, do not (Jensen 2001
-/// §7.2: "the normal ... filter").
-inline bool same_side(const Photon& photon, Vec3 n) { return dot(photon.n, n) > 0.5f; }
+/// The normal filter's threshold: the cosine between two normals above which they are one side.
+constexpr float same_side_cosine = 0.5f;
+
+/// Whether a density estimate at a point of normal n counts light arriving along `normal`'s side:
+/// photons arriving on the other side of a thin wall, or on a differently oriented surface nearby,
+/// do not (Jensen 2001 §7.2: "the normal ... filter").
+inline bool same_side(Vec3 normal, Vec3 n) { return dot(normal, n) > same_side_cosine; }
+inline bool same_side(const Photon& photon, Vec3 n) { return same_side(photon.n, n); }
 
 }  // namespace steadylight

@@ -5,12 +5,11 @@
 #include <memory>
 
 #include "steadylight/base/rng.h"
+#include "steadylight/photons/photon.h"
 #include "steadylight/shading/surface_point.h"
 
 namespace steadylight {
 namespace {
-
-constexpr float same_side_cosine = 0.5f;  // as the photons' normal filter (photon.h, same_side)
 
 /// What the probes need, kept by the coverage's functions: the scene and the tracer by reference
 /// (they outlive the frames), the frame's placement by value.
