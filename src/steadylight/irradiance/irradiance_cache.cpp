@@ -253,6 +253,24 @@ const std::vector<WeightedRecord>& usable_records(const SphereGrid& index, const
     return used;
 }
 
+/// Ward's interpolation at (p, n) over `used`, the records usable there with their weights.
+Rgb weighted_sum(const std::vector<IrradianceRecord>& records, const std::vector<std::array<float, 3>>& scales,
+                 const std::vector<WeightedRecord>& used, Vec3 p, Vec3 n) {
+    // Scale weights by the largest, so that at a record's own position (infinite weight) only
+    // that record counts and its E comes back exactly.
+    float max_weight = 0;
+    for (const WeightedRecord& r : used) max_weight = std::max(max_weight, r.weight);
+    Rgb sum;
+    float weight_sum = 0;
+    for (const WeightedRecord& r : used) {
+        const float weight = max_weight == infinity ? (r.weight == infinity ? 1.0f : 0.0f) : r.weight / max_weight;
+        if (weight == 0) continue;
+        sum += extrapolate(records[r.id], scales[r.id], p, n) * weight;
+        weight_sum += weight;
+    }
+    return sum / weight_sum;
+}
+
 }  // namespace
 
 /// The records' spheres of reach twice: as far as a look-up reaches, and as far as a relaxed one
@@ -310,20 +328,24 @@ std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scal
     const std::vector<WeightedRecord>& used =
         usable_records(m_index->for_scale(scale), m_records, m_settings.accuracy * scale, p, n);
     if (used.empty()) return std::nullopt;
+    return weighted_sum(m_records, m_gradient_scales, used, p, n);
+}
 
-    // Scale weights by the largest, so that at a record's own position (infinite weight) only
-    // that record counts and its E comes back exactly.
-    float max_weight = 0;
-    for (const WeightedRecord& r : used) max_weight = std::max(max_weight, r.weight);
-    Rgb sum;
-    float weight_sum = 0;
-    for (const WeightedRecord& r : used) {
-        const float weight = max_weight == infinity ? (r.weight == infinity ? 1.0f : 0.0f) : r.weight / max_weight;
-        if (weight == 0) continue;
-        sum += extrapolate(m_records[r.id], m_gradient_scales[r.id], p, n) * weight;
-        weight_sum += weight;
-    }
-    return sum / weight_sum;
+void IrradianceCache::usable_ids(Vec3 p, Vec3 n, float reach_scale, std::vector<uint32_t>& out) const {
+    const float scale = std::clamp(reach_scale, 1.0f, max_reach_scale);
+    const std::vector<WeightedRecord>& used =
+        usable_records(m_index->for_scale(scale), m_records, m_settings.accuracy * scale, p, n);
+    out.resize(used.size());
+    for (size_t i = 0; i < used.size(); ++i) out[i] = used[i].id;
+}
+
+Rgb IrradianceCache::interpolate_over(std::span<const uint32_t> ids, Vec3 p, Vec3 n) const {
+    SL_CHECK(!ids.empty());
+    // The weights usable_records gave these records: the same function of the same record.
+    thread_local std::vector<WeightedRecord> used;
+    used.resize(ids.size());
+    for (size_t i = 0; i < ids.size(); ++i) used[i] = {ids[i], ward_weight(m_records[ids[i]], p, n)};
+    return weighted_sum(m_records, m_gradient_scales, used, p, n);
 }
 
 bool IrradianceCache::covers(Vec3 p, Vec3 n) const {

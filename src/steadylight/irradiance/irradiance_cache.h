@@ -9,6 +9,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,13 @@ public:
     /// `reach_scale` in [1, 2] lets records reach further (1 / (accuracy * reach_scale)), for a
     /// second try before gathering anew.
     std::optional<Rgb> interpolate(Vec3 p, Vec3 n, float reach_scale = 1) const;
+
+    /// The records interpolate(p, n, reach_scale) uses, by id in ascending order (empty: none).
+    void usable_ids(Vec3 p, Vec3 n, float reach_scale, std::vector<uint32_t>& out) const;
+    /// interpolate(p, n, reach_scale) from the records it uses, `ids` (usable_ids of this cache or
+    /// of one whose records lie where these do, as with_irradiance keeps them): the same bits,
+    /// without searching the index. `ids` must not be empty.
+    Rgb interpolate_over(std::span<const uint32_t> ids, Vec3 p, Vec3 n) const;
 
     /// True when some record would be used at (p, n): no new gather is needed there.
     bool covers(Vec3 p, Vec3 n) const;

@@ -128,9 +128,11 @@ void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting) {
             sum += Rgb{1, 1, 1} * std::min(influence_at(lighting, x, y), max_influence_shown);
         sums.extra[influence_slot] = sum;
     };
-    // A pixel whose corrected records changed, and nothing else: L_t looked up again at each of
-    // its look-ups, then each camera ray's share summed in ray order, as shading sums it (L_i is
-    // L_t there, the blend weight being 0, and its L_t layer the same product).
+    // A pixel whose corrected records changed, and nothing else: L_t interpolated again at each of
+    // its look-ups over the records it interpolated in the static frame (the corrected records
+    // are the static ones, moved nowhere: the same records, the same weights), then each camera
+    // ray's share summed in ray order, as shading sums it (L_i is L_t there, the blend weight
+    // being 0, and its L_t layer the same product).
     reuse.look_up_again = [&reuse, &lighting](int, int, size_t pixel, PixelSums& sums) {
         const StaticFrame& base = reuse.base();
         const KeptLookUps look_ups = base.look_ups(pixel);
@@ -140,9 +142,9 @@ void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting) {
             const int i = look_ups.look_up(ray);
             if (i == KeptLookUps::none) continue;
             std::optional<Rgb>& E = L_t[size_t(i)];
-            // Covered, as in the static frame: the corrected records are the static ones, moved nowhere.
-            if (!E) E = lighting.corrected_cache.interpolate(look_ups.point(i), look_ups.normal(i));
-            if (!E) E = lighting.corrected_cache.interpolate(look_ups.point(i), look_ups.normal(i), 2).value();
+            if (!E)
+                E = lighting.corrected_cache.interpolate_over(look_ups.records(i), look_ups.point(i),
+                                                              look_ups.normal(i));
             L_i += look_ups.albedo(ray) * *E;
         }
         sums.indirect = sums.extra[L_t_slot] = L_i;
@@ -202,7 +204,7 @@ std::optional<StaticFrame> make_static_frame(const FrameContext& context, const 
     const IrradianceCache no_dynamic_cache(photon.cache);
     const InfluenceMap no_influence;
     StaticFrame out;
-    StaticFrameMaker maker(out, context.frame, photon.shading.samples_per_pixel, max_bytes);
+    StaticFrameMaker maker(out, context.frame, photon.shading.samples_per_pixel, corrected_cache, max_bytes);
     FrameStats stats;
     shade_localized(
         context, {solution.cache, no_dynamic_cache, corrected_cache, no_influence, irradiance, paths.caustic.photons},
@@ -250,7 +252,8 @@ PixelPlan plan_frame_pixels(const FrameContext& context, const StaticFrame& base
                                indirect_changes(camera, static_cache, changed_records, influence, localized),
                                std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
                                traced.caustic_changes.everywhere || !traced.caustic_changes.points.empty(),
-                               caustic_changes(camera, traced.caustic_changes, photon.shading.caustic_estimate)};
+                               caustic_changes(camera, traced.caustic_changes, photon.shading.caustic_estimate),
+                               changed_records};
     PixelPlan plan = plan_pixels(camera, base, changes);
     stats.pixels_reused = plan.reused, stats.pixels_looked_up_again = plan.looked_up_again;
     stats.pixels_redone_but_direct = plan.redone_but_direct, stats.pixels_redone = plan.redone;

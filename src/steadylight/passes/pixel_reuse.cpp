@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "steadylight/base/hash.h"
 #include "steadylight/base/parallel.h"
 
 namespace steadylight {
@@ -42,7 +43,8 @@ void append(std::vector<std::byte>& bytes, const T& value) {
 
 bool same_bits(Rgb a, Rgb b) { return std::memcmp(&a, &b, sizeof(Rgb)) == 0; }
 
-constexpr size_t look_up_bytes = 2 * sizeof(Vec3);  // a point and a normal
+// A point, a normal and where its record set lies in the tile's record sets.
+constexpr size_t look_up_bytes = 2 * sizeof(Vec3) + sizeof(uint32_t);
 
 }  // namespace
 
@@ -50,6 +52,11 @@ Vec3 KeptLookUps::point(int look_up) const { return read<Vec3>(m_look_ups + size
 
 Vec3 KeptLookUps::normal(int look_up) const {
     return read<Vec3>(m_look_ups + size_t(look_up) * look_up_bytes + sizeof(Vec3));
+}
+
+std::span<const uint32_t> KeptLookUps::records(int look_up) const {
+    const uint32_t at = read<uint32_t>(m_look_ups + size_t(look_up) * look_up_bytes + 2 * sizeof(Vec3));
+    return {m_record_sets + at + 1, m_record_sets[at]};
 }
 
 Rgb KeptLookUps::albedo(int ray) const { return read<Rgb>(m_albedos + size_t(m_rays[ray] >> 2) * sizeof(Rgb)); }
@@ -82,22 +89,26 @@ Rgb StaticFrame::direct(size_t pixel) const {
 
 KeptLookUps StaticFrame::look_ups(size_t pixel) const {
     const KeptPixel& kept = m_pixels[pixel];
-    if (kept.look_ups == 0) return {nullptr, nullptr, nullptr};
+    if (kept.look_ups == 0) return {};
     const std::byte* at = values_of(pixel);
     for (int i = 0; i < kept_sums; ++i) at += ((kept.kept >> (2 * i)) & 3) == stored ? sizeof(Rgb) : 0;
     at += ((kept.kept >> (2 * kept_sums)) & 3) == stored ? sizeof(float) : 0;
     const std::byte* albedos = at + kept.look_ups * look_up_bytes;
-    return {at, albedos, reinterpret_cast<const uint8_t*>(albedos + kept.albedos * sizeof(Rgb))};
+    return {kept.look_ups, at, albedos, reinterpret_cast<const uint8_t*>(albedos + kept.albedos * sizeof(Rgb)),
+            m_tile_record_sets[tile_of(pixel)].data()};
 }
 
 size_t StaticFrame::bytes() const {
     size_t bytes = m_pixels.capacity() * sizeof(KeptPixel) + m_tiles.capacity() * sizeof(m_tiles[0]);
     for (const std::vector<std::byte>& tile : m_tiles) bytes += tile.capacity();
+    bytes += m_tile_record_sets.capacity() * sizeof(m_tile_record_sets[0]);
+    for (const std::vector<uint32_t>& sets : m_tile_record_sets) bytes += sets.capacity() * sizeof(uint32_t);
     return bytes;
 }
 
-StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples, double max_bytes)
-    : m_out(out), m_max_bytes(max_bytes) {
+StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples,
+                                   const IrradianceCache& records, double max_bytes)
+    : m_out(out), m_records(records), m_max_bytes(max_bytes) {
     const Camera& camera = frame.camera;
     out.made_at = frame;
     out.width = camera.width, out.height = camera.height, out.samples = samples;
@@ -105,7 +116,9 @@ StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, in
     out.m_tiles_x = (camera.width + shading_tile_size - 1) / shading_tile_size;
     const size_t tiles = size_t(out.m_tiles_x) * size_t((camera.height + shading_tile_size - 1) / shading_tile_size);
     out.m_tiles.assign(tiles, {});
+    out.m_tile_record_sets.assign(tiles, {});
     m_pending.resize(tiles);
+    m_record_set_at.resize(tiles);
     m_bytes = out.m_pixels.size() * sizeof(StaticFrame::KeptPixel);
 }
 
@@ -155,19 +168,42 @@ void StaticFrameMaker::finish(size_t pixel, PixelSums& sums) {
                                                                     : StaticFrame::stored;
     kept.kept |= covered << (2 * StaticFrame::kept_sums);
     if (covered == StaticFrame::stored) append(bytes, sums.covered);
-    const Pending& pending = m_pending[m_out.tile_of(pixel)];
+    const size_t tile = m_out.tile_of(pixel);
+    Pending& pending = m_pending[tile];
     if (!(kept.trace.flags & PixelRecorder::unkept) && pending.look_ups > 0) {
         kept.look_ups = uint8_t(pending.look_ups), kept.albedos = uint8_t(pending.albedos.size());
-        for (int i = 0; i < pending.look_ups; ++i)
-            append(bytes, pending.p[size_t(i)]), append(bytes, pending.n[size_t(i)]);
+        for (int i = 0; i < pending.look_ups; ++i) {
+            // The records its look-up used: at the first reach that found any, as shading looks up.
+            const Vec3 p = pending.p[size_t(i)], n = pending.n[size_t(i)];
+            m_records.usable_ids(p, n, 1, pending.ids);
+            if (pending.ids.empty()) m_records.usable_ids(p, n, 2, pending.ids);
+            append(bytes, p), append(bytes, n), append(bytes, record_set_at(tile, pending.ids));
+        }
         for (const Rgb albedo : pending.albedos) append(bytes, albedo);
         for (const uint8_t ray : pending.rays) append(bytes, ray);
     }
     if (double(m_bytes += bytes.size() - kept.at) > m_max_bytes) m_too_big = true;
 }
 
+size_t StaticFrameMaker::IdsHash::operator()(const std::vector<uint32_t>& ids) const {
+    return size_t(checksum64(ids.data(), ids.size() * sizeof(uint32_t)));
+}
+
+uint32_t StaticFrameMaker::record_set_at(size_t tile, const std::vector<uint32_t>& ids) {
+    std::vector<uint32_t>& sets = m_out.m_tile_record_sets[tile];
+    const auto [known, added] = m_record_set_at[tile].try_emplace(ids, uint32_t(sets.size()));
+    if (added) {
+        sets.push_back(uint32_t(ids.size()));
+        sets.insert(sets.end(), ids.begin(), ids.end());
+        m_bytes += (ids.size() + 1) * sizeof(uint32_t);
+    }
+    return known->second;
+}
+
 void StaticFrameMaker::finish_frame() {
     for (std::vector<std::byte>& tile : m_out.m_tiles) tile.shrink_to_fit();
+    for (std::vector<uint32_t>& sets : m_out.m_tile_record_sets) sets.shrink_to_fit();
+    m_record_set_at.clear();
 }
 
 void PixelTrace::add_distant_direction(Vec3 w) {
@@ -297,6 +333,18 @@ void mark_spheres_on_screen(const Camera& camera, const std::vector<BoundingSphe
     });
 }
 
+namespace {
+
+/// Whether a look-up of `look_ups` interpolated a record marked in `records`.
+bool interpolates_any(const KeptLookUps& look_ups, const std::vector<uint8_t>& records) {
+    for (int i = 0; i < look_ups.count(); ++i)
+        for (const uint32_t id : look_ups.records(i))
+            if (records[id]) return true;
+    return false;
+}
+
+}  // namespace
+
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {
     const size_t pixels = base.pixel_count();
     PixelPlan plan;
@@ -326,12 +374,16 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
                 (chains && (changes.records_changed || changes.caustics_changed)))
                 changed |= indirect_term;
             if ((trace.flags & PixelRecorder::reads_caustics) && changes.caustic[size_t(i)]) changed |= caustic_term;
-            plan.changed[size_t(i)] = changed;
-            // Looked up again where only corrected records changed for a pixel whose every look-up was kept.
+            // Looked up again where only corrected records changed for a pixel whose every look-up was kept;
+            // kept as it is where none of the records those look-ups interpolated changed.
             const bool look_up_again =
                 changed == indirect_term && changes.indirect[size_t(i)] == FrameChanges::records &&
                 !(trace.flags &
                   (PixelRecorder::chain | PixelRecorder::coat | PixelRecorder::gather | PixelRecorder::unkept));
+            if (look_up_again && !changes.changed_records.empty() &&
+                !interpolates_any(base.look_ups(size_t(i)), changes.changed_records))
+                changed = 0;
+            plan.changed[size_t(i)] = changed;
             plan.work[size_t(i)] = !changed                                            ? PixelWork::reuse
                                    : look_up_again                                     ? PixelWork::look_up_again
                                    : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo

@@ -11,8 +11,9 @@
 //   caustic a caustic photon that changed lies within an estimate's reach of the pixel on the
 //           screen (or the caustic map changed whole) and the pixel shaded a diffuse point
 // No bit: the pixel is the static frame's, bit for bit what shading it would give. Only the
-// indirect bit, from changed records alone: its indirect light is looked up again where its
-// camera rays looked it up in the static frame, no ray traced. Only the indirect or caustic
+// indirect bit, from changed records alone: where none of the records its look-ups interpolated
+// in the static frame changed, no bit after all; else its indirect light is interpolated again
+// where its camera rays looked it up, over those records, no ray traced. Only the indirect or caustic
 // bits: it is shaded again without its shadow rays (its direct light is the static frame's).
 // Else it is shaded again whole. Points seen through mirrors and glass are not
 // on the screen where their pixel is, so a pixel with chains counts as changed whenever a record
@@ -24,9 +25,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
+#include "steadylight/irradiance/irradiance_cache.h"
 #include "steadylight/passes/shading_pass.h"
 
 namespace steadylight {
@@ -48,18 +52,25 @@ struct PixelTrace {
 };
 
 /// Where a kept pixel's camera rays looked up their indirect light: the pixel memo's look-ups
-/// (points and normals) and, per camera ray, which one and the albedo that multiplied it. A view
-/// into the static frame's bytes.
+/// (points, normals and the records each interpolated) and, per camera ray, which one and the
+/// albedo that multiplied it. A view into the static frame's bytes.
 class KeptLookUps {
 public:
     static constexpr int none = -1;
 
-    KeptLookUps(const std::byte* look_ups, const std::byte* albedos, const uint8_t* rays)
-        : m_look_ups(look_ups), m_albedos(albedos), m_rays(rays) {}
+    KeptLookUps() = default;  // none kept
+    KeptLookUps(int count, const std::byte* look_ups, const std::byte* albedos, const uint8_t* rays,
+                const uint32_t* record_sets)
+        : m_count(count), m_look_ups(look_ups), m_albedos(albedos), m_rays(rays), m_record_sets(record_sets) {}
+    /// How many look-ups were kept.
+    int count() const { return m_count; }
     /// The look-up camera ray `ray`'s indirect light came from, or none.
     int look_up(int ray) const { return m_rays && m_rays[ray] != no_ray ? m_rays[ray] & 3 : none; }
     Vec3 point(int look_up) const;
     Vec3 normal(int look_up) const;
+    /// The ids of the corrected records the look-up interpolated, ascending (usable_ids: at the
+    /// first reach that found any); empty where none did.
+    std::span<const uint32_t> records(int look_up) const;
     /// The albedo / pi that multiplied camera ray `ray`'s indirect light (one with a look-up).
     Rgb albedo(int ray) const;
 
@@ -68,9 +79,11 @@ public:
     static constexpr int max_albedos = 32;
 
 private:
-    const std::byte* m_look_ups;
-    const std::byte* m_albedos;
-    const uint8_t* m_rays;  // null: no camera ray's look-up was kept
+    int m_count = 0;
+    const std::byte* m_look_ups = nullptr;
+    const std::byte* m_albedos = nullptr;
+    const uint8_t* m_rays = nullptr;          // null: no camera ray's look-up was kept
+    const uint32_t* m_record_sets = nullptr;  // the tile's: a count, then as many ids, for each set
 };
 
 /// The static frame: every pixel's sums and trace, shaded with the dynamic objects removed, and
@@ -79,8 +92,9 @@ private:
 /// then its values in the bytes of its shading tile (each tile is shaded by one thread at a
 /// time, so a tile's bytes grow from one thread): of its sums only those that are not zero and
 /// not equal to its indirect sum (the L_t layer mostly is), its look-ups, the distinct albedos
-/// its camera rays multiplied them by, and a byte per camera ray. A diffuse room's pixel keeps
-/// about 130 bytes at 16 camera rays (docs/notes/reuse-memory.md).
+/// its camera rays multiplied them by, and a byte per camera ray; per tile, the distinct sets of
+/// records its look-ups interpolated (neighbouring pixels mostly share them). A diffuse room's
+/// pixel keeps about 130 bytes at 16 camera rays (docs/notes/reuse-memory.md).
 class StaticFrame {
 public:
     FrameState made_at;                      // the view and lights it was shaded with
@@ -116,6 +130,8 @@ private:
 
     std::vector<KeptPixel> m_pixels;
     std::vector<std::vector<std::byte>> m_tiles;  // per shading tile, row by row
+    // Per shading tile, the distinct sets of records its look-ups interpolated (KeptLookUps).
+    std::vector<std::vector<uint32_t>> m_tile_record_sets;
     int m_tiles_x = 0;
 };
 
@@ -129,8 +145,10 @@ constexpr double static_frame_memory_share = 0.25;
 /// to as much again while it is made, until finish_frame().
 class StaticFrameMaker : public PixelSource, public PixelRecorder {
 public:
-    /// Fills `out`, made for `frame`'s camera at `samples` camera rays a pixel.
-    StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples, double max_bytes);
+    /// Fills `out`, made for `frame`'s camera at `samples` camera rays a pixel, whose look-ups
+    /// interpolate `records` (kept: which of them each look-up used).
+    StaticFrameMaker(StaticFrame& out, const FrameState& frame, int samples, const IrradianceCache& records,
+                     double max_bytes);
     bool fits() const { return !m_too_big; }
     /// Gives back what the tiles' bytes reserved beyond their size; call once every pixel is shaded.
     void finish_frame();
@@ -152,9 +170,18 @@ private:
         int look_ups = 0;
         std::vector<Rgb> albedos;
         std::vector<uint8_t> rays;
+        std::vector<uint32_t> ids;
     };
+    struct IdsHash {
+        size_t operator()(const std::vector<uint32_t>& ids) const;
+    };
+    /// Where the tile's record sets hold `ids`, added there if they are new.
+    uint32_t record_set_at(size_t tile, const std::vector<uint32_t>& ids);
 
     StaticFrame& m_out;
+    const IrradianceCache& m_records;
+    // Per tile while it is shaded: where each record set already kept lies in its record sets.
+    std::vector<std::unordered_map<std::vector<uint32_t>, uint32_t, IdsHash>> m_record_set_at;
     std::vector<Pending> m_pending;  // per tile
     double m_max_bytes;
     std::atomic<size_t> m_bytes = 0;
@@ -204,6 +231,9 @@ struct FrameChanges {
     bool records_changed = false;   // some corrected record differs from the static one
     bool caustics_changed = false;  // the caustic map differs from the static one somewhere
     std::vector<uint8_t> caustic;   // per pixel: a diffuse point there may read changed caustic photons
+    // Per corrected record: 1 where it differs from the static one. A pixel whose look-ups
+    // interpolated none of them keeps its indirect light (empty: any may have).
+    std::vector<uint8_t> changed_records;
 };
 
 /// The work of every pixel of a frame, the terms that made it, and how many of each.

@@ -326,7 +326,7 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
     for (const int k : {1, 8}) {
         m_index.k_nearest(p, k, max_radius * max_radius, neighbours);
         for (const Neighbour& nb : neighbours) {
-            if (!(dot(m_n[nb.index], n) > 0.5f)) continue;
+            if (!same_side(m_n[nb.index], n)) continue;
             const Value& value = this->value(nb.index);
             const Rgb E = value.E;
             const float radius = value.radius;
