@@ -142,9 +142,11 @@ void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting) {
             const int i = look_ups.look_up(ray);
             if (i == KeptLookUps::none) continue;
             std::optional<Rgb>& E = L_t[size_t(i)];
-            if (!E)
-                E = lighting.corrected_cache.interpolate_over(look_ups.records(i), look_ups.point(i),
-                                                              look_ups.normal(i));
+            if (!E) {
+                thread_local std::vector<uint32_t> ids;
+                look_ups.records(i, ids);
+                E = lighting.corrected_cache.interpolate_over(ids, look_ups.point(i), look_ups.normal(i));
+            }
             L_i += look_ups.albedo(ray) * *E;
         }
         sums.indirect = sums.extra[L_t_slot] = L_i;

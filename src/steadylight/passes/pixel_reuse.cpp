@@ -1,6 +1,7 @@
 #include "steadylight/passes/pixel_reuse.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -43,8 +44,8 @@ void append(std::vector<std::byte>& bytes, const T& value) {
 
 bool same_bits(Rgb a, Rgb b) { return std::memcmp(&a, &b, sizeof(Rgb)) == 0; }
 
-// A point, a normal and where its record set lies in the tile's record sets.
-constexpr size_t look_up_bytes = 2 * sizeof(Vec3) + sizeof(uint32_t);
+// A point, a normal and which of the tile's record sets it interpolated.
+constexpr size_t look_up_bytes = 2 * sizeof(Vec3) + sizeof(uint16_t);
 
 }  // namespace
 
@@ -54,12 +55,34 @@ Vec3 KeptLookUps::normal(int look_up) const {
     return read<Vec3>(m_look_ups + size_t(look_up) * look_up_bytes + sizeof(Vec3));
 }
 
-std::span<const uint32_t> KeptLookUps::records(int look_up) const {
-    const uint32_t at = read<uint32_t>(m_look_ups + size_t(look_up) * look_up_bytes + 2 * sizeof(Vec3));
-    return {m_record_sets + at + 1, m_record_sets[at]};
+void KeptLookUps::records(int look_up, std::vector<uint32_t>& out) const {
+    m_record_sets->get(read<uint16_t>(m_look_ups + size_t(look_up) * look_up_bytes + 2 * sizeof(Vec3)), out);
 }
 
-Rgb KeptLookUps::albedo(int ray) const { return read<Rgb>(m_albedos + size_t(m_rays[ray] >> 2) * sizeof(Rgb)); }
+void TileRecordSets::get(int set, std::vector<uint32_t>& out) const {
+    out.clear();
+    for (int word = 0; word < words; ++word)
+        for (uint64_t bits_left = bits[size_t(set * words + word)]; bits_left; bits_left &= bits_left - 1)
+            out.push_back(ids[size_t(word * 64 + std::countr_zero(bits_left))]);
+}
+
+TileRecordSets TileRecordSets::of(const std::vector<std::vector<uint32_t>>& sets) {
+    TileRecordSets packed;
+    for (const std::vector<uint32_t>& set : sets) packed.ids.insert(packed.ids.end(), set.begin(), set.end());
+    std::sort(packed.ids.begin(), packed.ids.end());
+    packed.ids.erase(std::unique(packed.ids.begin(), packed.ids.end()), packed.ids.end());
+    packed.ids.shrink_to_fit();
+    packed.words = int((packed.ids.size() + 63) / 64);
+    packed.bits.assign(sets.size() * size_t(packed.words), 0);
+    for (size_t i = 0; i < sets.size(); ++i)
+        for (const uint32_t id : sets[i]) {
+            const size_t at = size_t(std::lower_bound(packed.ids.begin(), packed.ids.end(), id) - packed.ids.begin());
+            packed.bits[i * size_t(packed.words) + at / 64] |= uint64_t(1) << (at % 64);
+        }
+    return packed;
+}
+
+Rgb KeptLookUps::albedo(int ray) const { return read<Rgb>(m_albedos + size_t(ray_byte(ray) >> 2) * sizeof(Rgb)); }
 
 size_t StaticFrame::tile_of(size_t pixel) const {
     const size_t x = pixel % size_t(width), y = pixel / size_t(width);
@@ -94,15 +117,16 @@ KeptLookUps StaticFrame::look_ups(size_t pixel) const {
     for (int i = 0; i < kept_sums; ++i) at += ((kept.kept >> (2 * i)) & 3) == stored ? sizeof(Rgb) : 0;
     at += ((kept.kept >> (2 * kept_sums)) & 3) == stored ? sizeof(float) : 0;
     const std::byte* albedos = at + kept.look_ups * look_up_bytes;
-    return {kept.look_ups, at, albedos, reinterpret_cast<const uint8_t*>(albedos + kept.albedos * sizeof(Rgb)),
-            m_tile_record_sets[tile_of(pixel)].data()};
+    return {kept.look_ups,  at,
+            albedos,        reinterpret_cast<const uint8_t*>(albedos + kept.albedos * sizeof(Rgb)),
+            kept.same_rays, &m_tile_record_sets[tile_of(pixel)]};
 }
 
 size_t StaticFrame::bytes() const {
     size_t bytes = m_pixels.capacity() * sizeof(KeptPixel) + m_tiles.capacity() * sizeof(m_tiles[0]);
     for (const std::vector<std::byte>& tile : m_tiles) bytes += tile.capacity();
     bytes += m_tile_record_sets.capacity() * sizeof(m_tile_record_sets[0]);
-    for (const std::vector<uint32_t>& sets : m_tile_record_sets) bytes += sets.capacity() * sizeof(uint32_t);
+    for (const TileRecordSets& sets : m_tile_record_sets) bytes += sets.bytes();
     return bytes;
 }
 
@@ -118,7 +142,7 @@ StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, in
     out.m_tiles.assign(tiles, {});
     out.m_tile_record_sets.assign(tiles, {});
     m_pending.resize(tiles);
-    m_record_set_at.resize(tiles);
+    m_pending_sets.resize(tiles);
     m_bytes = out.m_pixels.size() * sizeof(StaticFrame::KeptPixel);
 }
 
@@ -177,10 +201,16 @@ void StaticFrameMaker::finish(size_t pixel, PixelSums& sums) {
             const Vec3 p = pending.p[size_t(i)], n = pending.n[size_t(i)];
             m_records.usable_ids(p, n, 1, pending.ids);
             if (pending.ids.empty()) m_records.usable_ids(p, n, 2, pending.ids);
-            append(bytes, p), append(bytes, n), append(bytes, record_set_at(tile, pending.ids));
+            append(bytes, p), append(bytes, n), append(bytes, record_set(tile, pending.ids));
         }
         for (const Rgb albedo : pending.albedos) append(bytes, albedo);
-        for (const uint8_t ray : pending.rays) append(bytes, ray);
+        // Most pixels' camera rays all look up one point under one albedo.
+        kept.same_rays =
+            std::all_of(pending.rays.begin(), pending.rays.end(), [&](uint8_t ray) { return ray == pending.rays[0]; });
+        if (kept.same_rays)
+            append(bytes, pending.rays[0]);
+        else
+            for (const uint8_t ray : pending.rays) append(bytes, ray);
     }
     if (double(m_bytes += bytes.size() - kept.at) > m_max_bytes) m_too_big = true;
 }
@@ -189,21 +219,29 @@ size_t StaticFrameMaker::IdsHash::operator()(const std::vector<uint32_t>& ids) c
     return size_t(checksum64(ids.data(), ids.size() * sizeof(uint32_t)));
 }
 
-uint32_t StaticFrameMaker::record_set_at(size_t tile, const std::vector<uint32_t>& ids) {
-    std::vector<uint32_t>& sets = m_out.m_tile_record_sets[tile];
-    const auto [known, added] = m_record_set_at[tile].try_emplace(ids, uint32_t(sets.size()));
+uint16_t StaticFrameMaker::record_set(size_t tile, const std::vector<uint32_t>& ids) {
+    // A tile has at most shading_tile_size^2 pixels of PixelMemo::capacity look-ups each.
+    static_assert(shading_tile_size * shading_tile_size * PixelMemo::capacity <= 65536);
+    PendingSets& pending = m_pending_sets[tile];
+    const auto [known, added] = pending.index.try_emplace(ids, uint16_t(pending.sets.size()));
     if (added) {
-        sets.push_back(uint32_t(ids.size()));
-        sets.insert(sets.end(), ids.begin(), ids.end());
-        m_bytes += (ids.size() + 1) * sizeof(uint32_t);
+        pending.sets.push_back(ids);
+        // What packing will keep: a word of bits a set (more past 64 records), an id a new record.
+        size_t new_ids = 0;
+        for (const uint32_t id : ids) new_ids += pending.ids.insert(id).second;
+        m_bytes += sizeof(uint64_t) + new_ids * sizeof(uint32_t);
     }
     return known->second;
 }
 
 void StaticFrameMaker::finish_frame() {
     for (std::vector<std::byte>& tile : m_out.m_tiles) tile.shrink_to_fit();
-    for (std::vector<uint32_t>& sets : m_out.m_tile_record_sets) sets.shrink_to_fit();
-    m_record_set_at.clear();
+    parallel_for_chunks(long(m_pending_sets.size()), 16, [&](long begin, long end) {
+        for (long tile = begin; tile < end; ++tile) {
+            m_out.m_tile_record_sets[size_t(tile)] = TileRecordSets::of(m_pending_sets[size_t(tile)].sets);
+            m_pending_sets[size_t(tile)] = {};
+        }
+    });
 }
 
 void PixelTrace::add_distant_direction(Vec3 w) {
@@ -337,9 +375,12 @@ namespace {
 
 /// Whether a look-up of `look_ups` interpolated a record marked in `records`.
 bool interpolates_any(const KeptLookUps& look_ups, const std::vector<uint8_t>& records) {
-    for (int i = 0; i < look_ups.count(); ++i)
-        for (const uint32_t id : look_ups.records(i))
+    thread_local std::vector<uint32_t> ids;
+    for (int i = 0; i < look_ups.count(); ++i) {
+        look_ups.records(i, ids);
+        for (const uint32_t id : ids)
             if (records[id]) return true;
+    }
     return false;
 }
 

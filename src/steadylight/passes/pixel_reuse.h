@@ -25,8 +25,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <span>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
@@ -51,6 +51,21 @@ struct PixelTrace {
     bool reached_distant_light() const { return to_distant_lo[0] <= to_distant_hi[0]; }
 };
 
+/// The distinct sets of records the look-ups of one shading tile interpolated, packed: the
+/// records any of them holds, ascending, and each set as bits over those (neighbouring pixels
+/// mostly interpolate the same few dozen records).
+struct TileRecordSets {
+    std::vector<uint32_t> ids;
+    std::vector<uint64_t> bits;  // `words` words a set
+    int words = 0;
+
+    /// The ids of set `set`, ascending.
+    void get(int set, std::vector<uint32_t>& out) const;
+    /// Packs `sets` (each ascending).
+    static TileRecordSets of(const std::vector<std::vector<uint32_t>>& sets);
+    size_t bytes() const { return ids.capacity() * sizeof(uint32_t) + bits.capacity() * sizeof(uint64_t); }
+};
+
 /// Where a kept pixel's camera rays looked up their indirect light: the pixel memo's look-ups
 /// (points, normals and the records each interpolated) and, per camera ray, which one and the
 /// albedo that multiplied it. A view into the static frame's bytes.
@@ -59,18 +74,24 @@ public:
     static constexpr int none = -1;
 
     KeptLookUps() = default;  // none kept
-    KeptLookUps(int count, const std::byte* look_ups, const std::byte* albedos, const uint8_t* rays,
-                const uint32_t* record_sets)
-        : m_count(count), m_look_ups(look_ups), m_albedos(albedos), m_rays(rays), m_record_sets(record_sets) {}
+    /// `rays`: a byte per camera ray, or one for all of them (`same_rays`).
+    KeptLookUps(int count, const std::byte* look_ups, const std::byte* albedos, const uint8_t* rays, bool same_rays,
+                const TileRecordSets* record_sets)
+        : m_count(count),
+          m_look_ups(look_ups),
+          m_albedos(albedos),
+          m_rays(rays),
+          m_same_rays(same_rays),
+          m_record_sets(record_sets) {}
     /// How many look-ups were kept.
     int count() const { return m_count; }
     /// The look-up camera ray `ray`'s indirect light came from, or none.
-    int look_up(int ray) const { return m_rays && m_rays[ray] != no_ray ? m_rays[ray] & 3 : none; }
+    int look_up(int ray) const { return m_rays && ray_byte(ray) != no_ray ? ray_byte(ray) & 3 : none; }
     Vec3 point(int look_up) const;
     Vec3 normal(int look_up) const;
     /// The ids of the corrected records the look-up interpolated, ascending (usable_ids: at the
     /// first reach that found any); empty where none did.
-    std::span<const uint32_t> records(int look_up) const;
+    void records(int look_up, std::vector<uint32_t>& out) const;
     /// The albedo / pi that multiplied camera ray `ray`'s indirect light (one with a look-up).
     Rgb albedo(int ray) const;
 
@@ -82,8 +103,11 @@ private:
     int m_count = 0;
     const std::byte* m_look_ups = nullptr;
     const std::byte* m_albedos = nullptr;
-    const uint8_t* m_rays = nullptr;          // null: no camera ray's look-up was kept
-    const uint32_t* m_record_sets = nullptr;  // the tile's: a count, then as many ids, for each set
+    uint8_t ray_byte(int ray) const { return m_rays[m_same_rays ? 0 : ray]; }
+
+    const uint8_t* m_rays = nullptr;  // null: no camera ray's look-up was kept
+    bool m_same_rays = false;
+    const TileRecordSets* m_record_sets = nullptr;  // the pixel's tile's
 };
 
 /// The static frame: every pixel's sums and trace, shaded with the dynamic objects removed, and
@@ -123,15 +147,15 @@ private:
         uint32_t at = 0;    // where its values start in its tile's bytes
         uint32_t kept = 0;  // Kept codes: sum i at bits 2i, covered after them
         uint8_t look_ups = 0, albedos = 0;
+        bool same_rays = false;  // every camera ray's byte the same: kept once
     };
 
     size_t tile_of(size_t pixel) const;
     const std::byte* values_of(size_t pixel) const { return m_tiles[tile_of(pixel)].data() + m_pixels[pixel].at; }
 
     std::vector<KeptPixel> m_pixels;
-    std::vector<std::vector<std::byte>> m_tiles;  // per shading tile, row by row
-    // Per shading tile, the distinct sets of records its look-ups interpolated (KeptLookUps).
-    std::vector<std::vector<uint32_t>> m_tile_record_sets;
+    std::vector<std::vector<std::byte>> m_tiles;     // per shading tile, row by row
+    std::vector<TileRecordSets> m_tile_record_sets;  // per shading tile
     int m_tiles_x = 0;
 };
 
@@ -175,14 +199,19 @@ private:
     struct IdsHash {
         size_t operator()(const std::vector<uint32_t>& ids) const;
     };
-    /// Where the tile's record sets hold `ids`, added there if they are new.
-    uint32_t record_set_at(size_t tile, const std::vector<uint32_t>& ids);
+    /// The distinct sets of records a tile's look-ups interpolated, until finish_frame() packs them.
+    struct PendingSets {
+        std::unordered_map<std::vector<uint32_t>, uint16_t, IdsHash> index;
+        std::vector<std::vector<uint32_t>> sets;  // in the order first met
+        std::unordered_set<uint32_t> ids;         // every id of them
+    };
+    /// The tile's set holding `ids`, added if it is new.
+    uint16_t record_set(size_t tile, const std::vector<uint32_t>& ids);
 
     StaticFrame& m_out;
     const IrradianceCache& m_records;
-    // Per tile while it is shaded: where each record set already kept lies in its record sets.
-    std::vector<std::unordered_map<std::vector<uint32_t>, uint32_t, IdsHash>> m_record_set_at;
-    std::vector<Pending> m_pending;  // per tile
+    std::vector<PendingSets> m_pending_sets;  // per tile
+    std::vector<Pending> m_pending;           // per tile
     double m_max_bytes;
     std::atomic<size_t> m_bytes = 0;
     std::atomic<bool> m_too_big = false;

@@ -294,13 +294,65 @@ TEST(StaticFrame, KeepsEverySumLookUpAndAlbedoOfAPixel) {
     }
     ASSERT_EQ(few_look_ups.count(), 2);
     const auto ids = [&](int look_up) {
-        const std::span<const uint32_t> used = few_look_ups.records(look_up);
-        return std::vector<uint32_t>(used.begin(), used.end());
+        std::vector<uint32_t> used;
+        few_look_ups.records(look_up, used);
+        return used;
     };
     EXPECT_EQ(ids(0), (std::vector<uint32_t>{0}));
     EXPECT_EQ(ids(1), (std::vector<uint32_t>{1, 2}));
     EXPECT_TRUE(kept.trace(many).flags & PixelRecorder::unkept);
     EXPECT_EQ(kept.look_ups(many).look_up(0), KeptLookUps::none);
+}
+
+// A pixel whose camera rays all look up one point under one albedo keeps one byte for them, not
+// one per ray, and reads back the same.
+TEST(StaticFrame, KeepsOneByteForCameraRaysThatAllLookUpAlike) {
+    FrameState frame;
+    frame.camera.width = 1, frame.camera.height = 1;
+    const int samples = 16;
+    IrradianceCache records;
+    records.insert({{1, 2, 0}, {0, 0, 1}, {1, 1, 1}, 1, {}, {}});
+    const auto make = [&](int rays_looking_up, StaticFrame& kept) {
+        StaticFrameMaker maker(kept, frame, samples, records, 1e9);
+        PixelSums sums;
+        maker.begin(0, 0, 0, sums);
+        for (int ray = 0; ray < rays_looking_up; ++ray)
+            maker.add_look_up(0, ray, 0, Vec3{1, 2, 0}, Vec3{0, 0, 1}, Rgb{1, 2, 3});
+        maker.finish(0, sums);
+        maker.finish_frame();
+    };
+    StaticFrame alike, one_missing;
+    make(samples, alike);
+    make(samples - 1, one_missing);
+    EXPECT_EQ(one_missing.bytes() - alike.bytes(), size_t(samples - 1));
+    const KeptLookUps look_ups = alike.look_ups(0);
+    for (int ray = 0; ray < samples; ++ray) {
+        ASSERT_EQ(look_ups.look_up(ray), 0);
+        EXPECT_EQ(look_ups.albedo(ray), (Rgb{1, 2, 3}));
+    }
+    EXPECT_EQ(one_missing.look_ups(0).look_up(samples - 1), KeptLookUps::none);
+    std::vector<uint32_t> ids;
+    look_ups.records(0, ids);
+    EXPECT_EQ(ids, (std::vector<uint32_t>{0}));
+}
+
+// A tile's record sets come back as they went in, also past 64 records in the tile (more than
+// a word of bits a set).
+TEST(TileRecordSets, GivesBackEverySetPastSixtyFourRecords) {
+    Pcg32 rng(7);
+    std::vector<std::vector<uint32_t>> sets = {{}, {5}};
+    for (int i = 0; i < 40; ++i) {
+        std::vector<uint32_t> set;
+        for (uint32_t id = 0; id < 3000; id += 1 + rng.next_u32() % 200) set.push_back(id);
+        sets.push_back(set);
+    }
+    const TileRecordSets packed = TileRecordSets::of(sets);
+    EXPECT_GT(packed.words, 1);
+    std::vector<uint32_t> back;
+    for (size_t i = 0; i < sets.size(); ++i) {
+        packed.get(int(i), back);
+        EXPECT_EQ(back, sets[i]) << i;
+    }
 }
 
 // A textured surface gives each camera ray an albedo of its own: at more camera rays than
