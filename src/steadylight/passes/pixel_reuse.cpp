@@ -66,19 +66,28 @@ void TileRecordSets::get(int set, std::vector<uint32_t>& out) const {
             out.push_back(ids[size_t(word * 64 + std::countr_zero(bits_left))]);
 }
 
-TileRecordSets TileRecordSets::of(const std::vector<std::vector<uint32_t>>& sets) {
+TileRecordSets TileRecordSets::of(const std::vector<uint32_t>& sets) {
+    // Each set's ids lie at [begin + 1, begin + 1 + sets[begin]).
+    const auto for_each_set = [&](auto&& f) {
+        size_t set = 0;
+        for (size_t begin = 0; begin < sets.size(); begin += 1 + sets[begin], ++set)
+            f(set, sets.begin() + ptrdiff_t(begin + 1), sets.begin() + ptrdiff_t(begin + 1 + sets[begin]));
+        return set;
+    };
     TileRecordSets packed;
-    for (const std::vector<uint32_t>& set : sets) packed.ids.insert(packed.ids.end(), set.begin(), set.end());
+    const size_t count =
+        for_each_set([&](size_t, auto first, auto last) { packed.ids.insert(packed.ids.end(), first, last); });
     std::sort(packed.ids.begin(), packed.ids.end());
     packed.ids.erase(std::unique(packed.ids.begin(), packed.ids.end()), packed.ids.end());
     packed.ids.shrink_to_fit();
     packed.words = int((packed.ids.size() + 63) / 64);
-    packed.bits.assign(sets.size() * size_t(packed.words), 0);
-    for (size_t i = 0; i < sets.size(); ++i)
-        for (const uint32_t id : sets[i]) {
-            const size_t at = size_t(std::lower_bound(packed.ids.begin(), packed.ids.end(), id) - packed.ids.begin());
-            packed.bits[i * size_t(packed.words) + at / 64] |= uint64_t(1) << (at % 64);
+    packed.bits.assign(count * size_t(packed.words), 0);
+    for_each_set([&](size_t set, auto first, auto last) {
+        for (auto id = first; id != last; ++id) {
+            const size_t at = size_t(std::lower_bound(packed.ids.begin(), packed.ids.end(), *id) - packed.ids.begin());
+            packed.bits[set * size_t(packed.words) + at / 64] |= uint64_t(1) << (at % 64);
         }
+    });
     return packed;
 }
 
@@ -213,35 +222,44 @@ void StaticFrameMaker::finish(size_t pixel, PixelSums& sums) {
             for (const uint8_t ray : pending.rays) append(bytes, ray);
     }
     if (double(m_bytes += bytes.size() - kept.at) > m_max_bytes) m_too_big = true;
-}
-
-size_t StaticFrameMaker::IdsHash::operator()(const std::vector<uint32_t>& ids) const {
-    return size_t(checksum64(ids.data(), ids.size() * sizeof(uint32_t)));
+    // The tile's last pixel: its record sets are complete.
+    const int tile_x = int(tile % size_t(m_out.m_tiles_x)), tile_y = int(tile / size_t(m_out.m_tiles_x));
+    const int tile_pixels = std::min(shading_tile_size, m_out.width - tile_x * shading_tile_size) *
+                            std::min(shading_tile_size, m_out.height - tile_y * shading_tile_size);
+    if (++m_pending_sets[tile].pixels_done == tile_pixels) pack_record_sets(tile);
 }
 
 uint16_t StaticFrameMaker::record_set(size_t tile, const std::vector<uint32_t>& ids) {
     // A tile has at most shading_tile_size^2 pixels of PixelMemo::capacity look-ups each.
     static_assert(shading_tile_size * shading_tile_size * PixelMemo::capacity <= 65536);
     PendingSets& pending = m_pending_sets[tile];
-    const auto [known, added] = pending.index.try_emplace(ids, uint16_t(pending.sets.size()));
-    if (added) {
-        pending.sets.push_back(ids);
-        // What packing will keep: a word of bits a set (more past 64 records), an id a new record.
-        size_t new_ids = 0;
-        for (const uint32_t id : ids) new_ids += pending.ids.insert(id).second;
-        m_bytes += sizeof(uint64_t) + new_ids * sizeof(uint32_t);
+    const uint64_t checksum = checksum64(ids.data(), ids.size() * sizeof(uint32_t));
+    for (auto [same, end] = pending.index.equal_range(checksum); same != end; ++same) {
+        const auto first = pending.sets.begin() + ptrdiff_t(pending.at[same->second]);
+        if (*first == ids.size() && std::equal(ids.begin(), ids.end(), first + 1)) return same->second;
     }
-    return known->second;
+    const auto set = uint16_t(pending.at.size());
+    pending.at.push_back(uint32_t(pending.sets.size()));
+    pending.sets.push_back(uint32_t(ids.size()));
+    pending.sets.insert(pending.sets.end(), ids.begin(), ids.end());
+    pending.index.emplace(checksum, set);
+    m_bytes += (ids.size() + 1) * sizeof(uint32_t);
+    return set;
+}
+
+void StaticFrameMaker::pack_record_sets(size_t tile) {
+    PendingSets& pending = m_pending_sets[tile];
+    TileRecordSets& packed = m_out.m_tile_record_sets[tile];
+    packed = TileRecordSets::of(pending.sets);
+    m_bytes += packed.bytes();
+    m_bytes -= pending.sets.size() * sizeof(uint32_t);
+    pending = {};
 }
 
 void StaticFrameMaker::finish_frame() {
     for (std::vector<std::byte>& tile : m_out.m_tiles) tile.shrink_to_fit();
-    parallel_for_chunks(long(m_pending_sets.size()), 16, [&](long begin, long end) {
-        for (long tile = begin; tile < end; ++tile) {
-            m_out.m_tile_record_sets[size_t(tile)] = TileRecordSets::of(m_pending_sets[size_t(tile)].sets);
-            m_pending_sets[size_t(tile)] = {};
-        }
-    });
+    for (size_t tile = 0; tile < m_pending_sets.size(); ++tile)
+        if (!m_pending_sets[tile].sets.empty()) pack_record_sets(tile);  // a tile not shaded whole
 }
 
 void PixelTrace::add_distant_direction(Vec3 w) {

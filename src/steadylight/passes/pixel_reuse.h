@@ -26,7 +26,6 @@
 #include <cstdint>
 #include <functional>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
@@ -61,8 +60,8 @@ struct TileRecordSets {
 
     /// The ids of set `set`, ascending.
     void get(int set, std::vector<uint32_t>& out) const;
-    /// Packs `sets` (each ascending).
-    static TileRecordSets of(const std::vector<std::vector<uint32_t>>& sets);
+    /// Packs `sets`: each set's size, then its ids, ascending.
+    static TileRecordSets of(const std::vector<uint32_t>& sets);
     size_t bytes() const { return ids.capacity() * sizeof(uint32_t) + bits.capacity() * sizeof(uint64_t); }
 };
 
@@ -196,17 +195,18 @@ private:
         std::vector<uint8_t> rays;
         std::vector<uint32_t> ids;
     };
-    struct IdsHash {
-        size_t operator()(const std::vector<uint32_t>& ids) const;
-    };
-    /// The distinct sets of records a tile's look-ups interpolated, until finish_frame() packs them.
+    /// The distinct sets of records a tile's look-ups interpolated, until its last pixel is
+    /// finished and they are packed (so that only the tiles being shaded hold them unpacked).
     struct PendingSets {
-        std::unordered_map<std::vector<uint32_t>, uint16_t, IdsHash> index;
-        std::vector<std::vector<uint32_t>> sets;  // in the order first met
-        std::unordered_set<uint32_t> ids;         // every id of them
+        std::vector<uint32_t> sets;                         // in the order first met: size, then ids
+        std::vector<uint32_t> at;                           // per set: where it starts in `sets`
+        std::unordered_multimap<uint64_t, uint16_t> index;  // a set's checksum: the sets with it
+        int pixels_done = 0;
     };
     /// The tile's set holding `ids`, added if it is new.
     uint16_t record_set(size_t tile, const std::vector<uint32_t>& ids);
+    /// Packs the tile's record sets into the static frame.
+    void pack_record_sets(size_t tile);
 
     StaticFrame& m_out;
     const IrradianceCache& m_records;

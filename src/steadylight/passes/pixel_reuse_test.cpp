@@ -346,7 +346,12 @@ TEST(TileRecordSets, GivesBackEverySetPastSixtyFourRecords) {
         for (uint32_t id = 0; id < 3000; id += 1 + rng.next_u32() % 200) set.push_back(id);
         sets.push_back(set);
     }
-    const TileRecordSets packed = TileRecordSets::of(sets);
+    std::vector<uint32_t> flat;
+    for (const std::vector<uint32_t>& set : sets) {
+        flat.push_back(uint32_t(set.size()));
+        flat.insert(flat.end(), set.begin(), set.end());
+    }
+    const TileRecordSets packed = TileRecordSets::of(flat);
     EXPECT_GT(packed.words, 1);
     std::vector<uint32_t> back;
     for (size_t i = 0; i < sets.size(); ++i) {
