@@ -55,8 +55,25 @@ Vec3 KeptLookUps::normal(int look_up) const {
     return read<Vec3>(m_look_ups + size_t(look_up) * look_up_bytes + sizeof(Vec3));
 }
 
+int KeptLookUps::record_set(int look_up) const {
+    return read<uint16_t>(m_look_ups + size_t(look_up) * look_up_bytes + 2 * sizeof(Vec3));
+}
+
 void KeptLookUps::records(int look_up, std::vector<uint32_t>& out) const {
-    m_record_sets->get(read<uint16_t>(m_look_ups + size_t(look_up) * look_up_bytes + 2 * sizeof(Vec3)), out);
+    m_record_sets->get(record_set(look_up), out);
+}
+
+std::vector<uint64_t> TileRecordSets::marked(const std::vector<uint8_t>& records) const {
+    std::vector<uint64_t> bits_marked(size_t(words), 0);
+    for (size_t i = 0; i < ids.size(); ++i)
+        if (records[ids[i]]) bits_marked[i / 64] |= uint64_t(1) << (i % 64);
+    return bits_marked;
+}
+
+bool TileRecordSets::meets(int set, const std::vector<uint64_t>& marked) const {
+    for (int word = 0; word < words; ++word)
+        if (bits[size_t(set * words + word)] & marked[size_t(word)]) return true;
+    return false;
 }
 
 void TileRecordSets::get(int set, std::vector<uint32_t>& out) const {
@@ -129,6 +146,23 @@ KeptLookUps StaticFrame::look_ups(size_t pixel) const {
     return {kept.look_ups,  at,
             albedos,        reinterpret_cast<const uint8_t*>(albedos + kept.albedos * sizeof(Rgb)),
             kept.same_rays, &m_tile_record_sets[tile_of(pixel)]};
+}
+
+std::vector<std::vector<uint64_t>> StaticFrame::marked_records(const std::vector<uint8_t>& records) const {
+    std::vector<std::vector<uint64_t>> marked(m_tile_record_sets.size());
+    parallel_for_chunks(long(marked.size()), 64, [&](long begin, long end) {
+        for (long tile = begin; tile < end; ++tile)
+            marked[size_t(tile)] = m_tile_record_sets[size_t(tile)].marked(records);
+    });
+    return marked;
+}
+
+bool StaticFrame::interpolates_marked(size_t pixel, const std::vector<std::vector<uint64_t>>& marked) const {
+    const KeptLookUps kept = look_ups(pixel);
+    const size_t tile = tile_of(pixel);
+    for (int i = 0; i < kept.count(); ++i)
+        if (m_tile_record_sets[tile].meets(kept.record_set(i), marked[tile])) return true;
+    return false;
 }
 
 size_t StaticFrame::bytes() const {
@@ -389,21 +423,6 @@ void mark_spheres_on_screen(const Camera& camera, const std::vector<BoundingSphe
     });
 }
 
-namespace {
-
-/// Whether a look-up of `look_ups` interpolated a record marked in `records`.
-bool interpolates_any(const KeptLookUps& look_ups, const std::vector<uint8_t>& records) {
-    thread_local std::vector<uint32_t> ids;
-    for (int i = 0; i < look_ups.count(); ++i) {
-        look_ups.records(i, ids);
-        for (const uint32_t id : ids)
-            if (records[id]) return true;
-    }
-    return false;
-}
-
-}  // namespace
-
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {
     const size_t pixels = base.pixel_count();
     PixelPlan plan;
@@ -411,6 +430,9 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
     plan.changed.assign(pixels, 0);
     std::vector<uint8_t> seen(pixels, 0);  // a camera ray may meet a dynamic object
     for (const BoundingSphere& object : changes.dynamic) mark_sphere_on_screen(camera, object, seen, Outline::round);
+    const std::vector<std::vector<uint64_t>> changed_records = changes.changed_records.empty()
+                                                                   ? std::vector<std::vector<uint64_t>>{}
+                                                                   : base.marked_records(changes.changed_records);
     parallel_for_chunks(long(pixels), 4096, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
             const PixelTrace& trace = base.trace(size_t(i));
@@ -440,7 +462,7 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
                 !(trace.flags &
                   (PixelRecorder::chain | PixelRecorder::coat | PixelRecorder::gather | PixelRecorder::unkept));
             if (look_up_again && !changes.changed_records.empty() &&
-                !interpolates_any(base.look_ups(size_t(i)), changes.changed_records))
+                !base.interpolates_marked(size_t(i), changed_records))
                 changed = 0;
             plan.changed[size_t(i)] = changed;
             plan.work[size_t(i)] = !changed                                            ? PixelWork::reuse

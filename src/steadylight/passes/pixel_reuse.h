@@ -60,6 +60,10 @@ struct TileRecordSets {
 
     /// The ids of set `set`, ascending.
     void get(int set, std::vector<uint32_t>& out) const;
+    /// Bits over `ids`: which of them `records` marks (non-zero at a record's id).
+    std::vector<uint64_t> marked(const std::vector<uint8_t>& records) const;
+    /// Whether set `set` holds a record of `marked` (marked()).
+    bool meets(int set, const std::vector<uint64_t>& marked) const;
     /// Packs `sets`: each set's size, then its ids, ascending.
     static TileRecordSets of(const std::vector<uint32_t>& sets);
     size_t bytes() const { return ids.capacity() * sizeof(uint32_t) + bits.capacity() * sizeof(uint64_t); }
@@ -91,6 +95,8 @@ public:
     /// The ids of the corrected records the look-up interpolated, ascending (usable_ids: at the
     /// first reach that found any); empty where none did.
     void records(int look_up, std::vector<uint32_t>& out) const;
+    /// Which of the tile's record sets the look-up interpolated.
+    int record_set(int look_up) const;
     /// The albedo / pi that multiplied camera ray `ray`'s indirect light (one with a look-up).
     Rgb albedo(int ray) const;
 
@@ -128,6 +134,11 @@ public:
     /// sums(pixel).direct, without unpacking the others.
     Rgb direct(size_t pixel) const;
     KeptLookUps look_ups(size_t pixel) const;
+    /// Per shading tile, which of the records its look-ups interpolated `records` marks (non-zero
+    /// at a record's id): for interpolates_marked().
+    std::vector<std::vector<uint64_t>> marked_records(const std::vector<uint8_t>& records) const;
+    /// Whether a look-up of the pixel interpolated a record of `marked` (marked_records()).
+    bool interpolates_marked(size_t pixel, const std::vector<std::vector<uint64_t>>& marked) const;
     size_t pixel_count() const { return m_pixels.size(); }
     /// The memory it holds.
     size_t bytes() const;

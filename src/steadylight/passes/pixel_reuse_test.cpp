@@ -3,6 +3,7 @@
 // layer for layer, on the scenes whose camera stands still.
 #include "steadylight/passes/pixel_reuse.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -336,9 +337,9 @@ TEST(StaticFrame, KeepsOneByteForCameraRaysThatAllLookUpAlike) {
     EXPECT_EQ(ids, (std::vector<uint32_t>{0}));
 }
 
-// A tile's record sets come back as they went in, also past 64 records in the tile (more than
-// a word of bits a set).
-TEST(TileRecordSets, GivesBackEverySetPastSixtyFourRecords) {
+// A tile's record sets come back as they went in, and tell whether they hold a marked record,
+// also past 64 records in the tile (more than a word of bits a set).
+TEST(TileRecordSets, GivesBackEverySetAndWhatItMeetsPastSixtyFourRecords) {
     Pcg32 rng(7);
     std::vector<std::vector<uint32_t>> sets = {{}, {5}};
     for (int i = 0; i < 40; ++i) {
@@ -358,6 +359,18 @@ TEST(TileRecordSets, GivesBackEverySetPastSixtyFourRecords) {
         packed.get(int(i), back);
         EXPECT_EQ(back, sets[i]) << i;
     }
+    // A set meets the marked records exactly when one of its ids is marked.
+    std::vector<uint8_t> records(3000, 0);
+    for (const uint32_t id : {5u, 1999u, 2999u}) records[id] = 1;
+    const std::vector<uint64_t> marked = packed.marked(records);
+    int meeting = 0;
+    for (size_t i = 0; i < sets.size(); ++i) {
+        const bool any = std::any_of(sets[i].begin(), sets[i].end(), [&](uint32_t id) { return records[id] != 0; });
+        EXPECT_EQ(packed.meets(int(i), marked), any) << i;
+        meeting += any;
+    }
+    EXPECT_GT(meeting, 1);
+    EXPECT_LT(meeting, int(sets.size()));
 }
 
 // A textured surface gives each camera ray an albedo of its own: at more camera rays than
