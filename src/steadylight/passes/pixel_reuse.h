@@ -105,11 +105,11 @@ public:
     static constexpr int max_albedos = 32;
 
 private:
+    uint8_t ray_byte(int ray) const { return m_rays[m_same_rays ? 0 : ray]; }
+
     int m_count = 0;
     const std::byte* m_look_ups = nullptr;
     const std::byte* m_albedos = nullptr;
-    uint8_t ray_byte(int ray) const { return m_rays[m_same_rays ? 0 : ray]; }
-
     const uint8_t* m_rays = nullptr;  // null: no camera ray's look-up was kept
     bool m_same_rays = false;
     const TileRecordSets* m_record_sets = nullptr;  // the pixel's tile's
@@ -123,7 +123,7 @@ private:
 /// not equal to its indirect sum (the L_t layer mostly is), its look-ups, the distinct albedos
 /// its camera rays multiplied them by, and a byte per camera ray; per tile, the distinct sets of
 /// records its look-ups interpolated (neighbouring pixels mostly share them). A diffuse room's
-/// pixel keeps about 130 bytes at 16 camera rays (docs/notes/reuse-memory.md).
+/// pixel keeps about 120 bytes at 16 camera rays (docs/notes/reuse-memory.md).
 class StaticFrame {
 public:
     FrameState made_at;                      // the view and lights it was shaded with
