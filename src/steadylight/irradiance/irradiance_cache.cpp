@@ -283,7 +283,13 @@ struct IrradianceCache::Index {
         reach.insert(id, record.p, accuracy * record.radius * index_padding, record.radius);
         relaxed_reach.insert(id, record.p, max_reach_scale * accuracy * record.radius * index_padding, record.radius);
     }
-    const SphereGrid& for_scale(float reach_scale) const { return reach_scale <= 1 ? reach : relaxed_reach; }
+    /// usable_records at (p, n) for a look-up reaching `reach_scale` times as far as Ward's
+    /// (clamped to [1, max_reach_scale]).
+    const std::vector<WeightedRecord>& usable(const std::vector<IrradianceRecord>& records, float accuracy, Vec3 p,
+                                              Vec3 n, float reach_scale) const {
+        const float scale = std::clamp(reach_scale, 1.0f, max_reach_scale);
+        return usable_records(scale <= 1 ? reach : relaxed_reach, records, accuracy * scale, p, n);
+    }
     void clear() {
         reach.clear();
         relaxed_reach.clear();
@@ -324,17 +330,13 @@ IrradianceCache IrradianceCache::with_irradiance(std::vector<IrradianceRecord> r
 }
 
 std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scale) const {
-    const float scale = std::clamp(reach_scale, 1.0f, max_reach_scale);
-    const std::vector<WeightedRecord>& used =
-        usable_records(m_index->for_scale(scale), m_records, m_settings.accuracy * scale, p, n);
+    const std::vector<WeightedRecord>& used = m_index->usable(m_records, m_settings.accuracy, p, n, reach_scale);
     if (used.empty()) return std::nullopt;
     return weighted_sum(m_records, m_gradient_scales, used, p, n);
 }
 
 void IrradianceCache::usable_ids(Vec3 p, Vec3 n, float reach_scale, std::vector<uint32_t>& out) const {
-    const float scale = std::clamp(reach_scale, 1.0f, max_reach_scale);
-    const std::vector<WeightedRecord>& used =
-        usable_records(m_index->for_scale(scale), m_records, m_settings.accuracy * scale, p, n);
+    const std::vector<WeightedRecord>& used = m_index->usable(m_records, m_settings.accuracy, p, n, reach_scale);
     out.resize(used.size());
     for (size_t i = 0; i < used.size(); ++i) out[i] = used[i].id;
 }
