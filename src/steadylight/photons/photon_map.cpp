@@ -177,6 +177,10 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
     SL_CHECK(!m_reuse || m_reuse->static_ids.size() == global.size());
     const std::vector<Photon>& photons = global.photons();
     std::vector<Vec3> positions;
+    // About as many carriers as the static map's (a frame changes a few), or one in `stride`.
+    const size_t expected = (m_reuse ? m_reuse->values->size() : photons.size() / size_t(stride)) * 17 / 16 + 16;
+    m_photon.reserve(expected), m_hash.reserve(expected), m_n.reserve(expected), positions.reserve(expected);
+    if (m_reuse) m_static_carrier.reserve(expected);
     const auto add_carrier = [&](uint32_t photon, uint64_t hash, uint32_t static_carrier) {
         m_photon.push_back(photon);
         m_hash.push_back(hash);

@@ -1,6 +1,8 @@
 // Static photon paths kept and composed into each frame's maps (photon_paths.h).
 #include "steadylight/photons/photon_paths.h"
 
+#include <numeric>
+
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/photons/photon_tracer.h"
@@ -131,10 +133,11 @@ Composition compose_main(const StoredPaths& paths, const std::vector<ChunkChange
     c.photons.reserve(base.size());
     uint32_t cursor = 0;
     const auto keep = [&](uint32_t end) {
-        for (; cursor < end; ++cursor) {
-            c.base_ids[cursor] = uint32_t(c.photons.size());
-            c.photons.push_back(base[cursor]);
-        }
+        if (end <= cursor) return;
+        const uint32_t first = uint32_t(c.photons.size());
+        std::iota(c.base_ids.begin() + cursor, c.base_ids.begin() + end, first);
+        c.photons.insert(c.photons.end(), base.begin() + cursor, base.begin() + end);
+        cursor = end;
     };
     for (const ChunkChanges& chunk_changes : changes)
         for (const ChangedPath& changed : chunk_changes.paths) {
