@@ -173,6 +173,8 @@ Rgb PhotonMap::estimate_irradiance_cone(Vec3 p, Vec3 n, const DensitySettings& s
 IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const DensitySettings& settings,
                                      SurfaceCoverage coverage, std::shared_ptr<const StaticIrradianceReuse> reuse)
     : m_global(&global), m_settings(settings), m_coverage(std::move(coverage)), m_reuse(std::move(reuse)) {
+    static std::atomic<uint64_t> made = 0;
+    m_id = ++made;
     SL_CHECK(stride >= 1);
     SL_CHECK(!m_reuse || m_reuse->static_ids.size() == global.size());
     const std::vector<Photon>& photons = global.photons();
@@ -327,8 +329,29 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
     // Most look-ups are answered by the single nearest photon; only near creases and thin walls
     // does its normal disagree, and then the next few are tried.
     thread_local std::vector<Neighbour> neighbours;
+    // A thread's look-ups come in runs of nearby points (a record's gather rays, in the order of
+    // their directions): the last one's answer bounds the next one's search.
+    thread_local struct {
+        uint64_t of = 0;
+        uint32_t value = 0;
+    } last;
+    const float max_distance2 = max_radius * max_radius;
     for (const int k : {1, 8}) {
-        m_index.k_nearest(p, k, max_radius * max_radius, neighbours);
+        if (k == 1) {
+            std::optional<Neighbour> known;
+            if (last.of == m_id) {
+                const float distance2 = PointIndex::distance2(m_global->photons()[m_photon[last.value]].p, p);
+                if (distance2 <= max_distance2) known = Neighbour{last.value, distance2};
+            }
+            const std::optional<Neighbour> found = m_index.nearest(p, max_distance2, known);
+            neighbours.clear();
+            if (found) {
+                neighbours.push_back(*found);
+                last = {m_id, found->index};
+            }
+        } else {
+            m_index.k_nearest(p, k, max_distance2, neighbours);
+        }
         for (const Neighbour& nb : neighbours) {
             if (!same_side(m_n[nb.index], n)) continue;
             const Value& value = this->value(nb.index);

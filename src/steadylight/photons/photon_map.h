@@ -230,6 +230,7 @@ private:
     std::unique_ptr<std::atomic<uint8_t>[]> m_wider_state;  // and its state, as m_state
     mutable std::atomic<long> m_computed = 0, m_reused = 0, m_from_static_lists = 0, m_carried = 0;
     PointIndex m_index;
+    uint64_t m_id = 0;  // unique in the process: whose values a thread's last look-up answered with
 };
 
 }  // namespace steadylight

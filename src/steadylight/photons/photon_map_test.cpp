@@ -73,6 +73,41 @@ TEST(PhotonMap, KNearestBreaksTiesByIndexLikeBruteForce) {
     }
 }
 
+// Told of a point it holds (the last look-up's answer, nearby), the nearest search answers as
+// without it: with duplicates at the same spot, a known point nearer, level with or farther than
+// the answer, and one outside the radius, which is not told.
+TEST(PhotonMap, NearestToldOfAPointAnswersAsWithout) {
+    std::vector<Vec3> points = random_points(3000, 6);
+    for (int i = 0; i < 3000; i += 3) points[size_t(i)] = points[size_t(i / 2)];  // duplicates
+    const PointIndex index(points);
+    const float max_distance2 = 0.01f;
+    std::vector<Neighbour> expected;
+    int told = 0, ties = 0;
+    Pcg32 rng(7);
+    for (const Vec3& q : random_points(300, 8)) {
+        index.k_nearest(q, 1, max_distance2, expected);
+        EXPECT_EQ(index.nearest(q, max_distance2).has_value(), !expected.empty());
+        // Every duplicate of the answer (level with it, but a larger or smaller index), the answer
+        // itself, and random points.
+        std::vector<uint32_t> known_points;
+        for (uint32_t i = 0; i < points.size() && !expected.empty(); ++i)
+            if (points[i] == points[expected[0].index]) known_points.push_back(i);
+        for (int i = 0; i < 8; ++i) known_points.push_back(rng.next_u32() % uint32_t(points.size()));
+        for (const uint32_t known : known_points) {
+            const float distance2 = PointIndex::distance2(points[known], q);
+            if (distance2 > max_distance2) continue;
+            ++told;
+            ties += !expected.empty() && distance2 == expected[0].distance2;
+            const std::optional<Neighbour> found = index.nearest(q, max_distance2, Neighbour{known, distance2});
+            ASSERT_TRUE(found && !expected.empty());
+            EXPECT_EQ(found->index, expected[0].index);
+            EXPECT_EQ(found->distance2, expected[0].distance2);
+        }
+    }
+    EXPECT_GT(told, 300);
+    EXPECT_GT(ties, 100);
+}
+
 // A map composed over another's index (some photons removed, others added in between, the rest
 // renumbered) answers exactly as a map built over all its photons, ties included: new photons
 // sit exactly on kept and on removed ones.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "steadylight/base/check.h"
 
@@ -238,6 +239,17 @@ void PointIndex::within(Vec3 p, float max_distance2, std::vector<Neighbour>& out
 
 void PointIndex::within(Mapped a, Mapped b, Vec3 p, float max_distance2, std::vector<Neighbour>& out) {
     search_within(p, max_distance2, out, std::pair{a.index, MappedIds{a.ids}}, std::pair{b.index, MappedIds{b.ids}});
+}
+
+std::optional<Neighbour> PointIndex::nearest(Vec3 p, float max_distance2, std::optional<Neighbour> known) const {
+    NearestOne nearest(max_distance2);
+    if (known) nearest.offer(known->index, known->distance2);
+    if (!m_entries.empty()) {
+        const float query[3] = {p.x, p.y, p.z};
+        search(0, uint32_t(m_entries.size()), query, CellDistance{}, nearest, OwnIds{});
+    }
+    if (!nearest.size()) return std::nullopt;
+    return nearest.best();
 }
 
 void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "steadylight/base/vec.h"
@@ -54,6 +55,11 @@ public:
     /// The up to `k` nearest points within sqrt(max_distance2) of `p`, nearest first (ties:
     /// smaller index first).
     void k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const;
+
+    /// k_nearest(p, 1, max_distance2), told of a point of the index within that distance already
+    /// (`known`: its id and squared distance to p): the search prunes by it from the start, as a
+    /// run of nearby queries can tell each the one before's answer. The same answer either way.
+    std::optional<Neighbour> nearest(Vec3 p, float max_distance2, std::optional<Neighbour> known = {}) const;
 
     /// k_nearest over the union of two mapped indexes (their ids distinct): the same answer as
     /// one index built over the union with those ids, since both order by distance, then id.
