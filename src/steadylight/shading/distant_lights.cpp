@@ -251,6 +251,7 @@ public:
     /// exactly) or cosine-weighted besides; so that every lit direction keeps a chance (light
     /// from behind a rough pane). Inside a room with portals, through a portal half of the time
     /// (three times in four for a uniform colour), else by the map.
+    bool samples_by_normal() const override { return true; }
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3 n) const override {
         const Shares shares = shares_at(ref, n);
         LightSample s;

@@ -52,6 +52,9 @@ public:
     /// `n`, the surface normal at ref (zero where there is none), lets light from every
     /// direction favour the hemisphere it faces.
     virtual std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3 n) const = 0;
+    /// Whether sample_li reads its `n`: light from every direction does, a light with a place or
+    /// a single direction does not.
+    virtual bool samples_by_normal() const { return false; }
     /// The solid-angle pdf sample_li would give for reaching `p` (normal `n`) from `ref`.
     virtual float pdf_li(Vec3 ref, Vec3 p, Vec3 n) const = 0;
     /// What a ray leaving the scene along unit `w` sees of this light (lights from far away)...

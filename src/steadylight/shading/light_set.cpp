@@ -172,6 +172,10 @@ std::optional<LightSample> LightSet::sample_chosen(size_t i, float lo, float p_s
 std::optional<LightSample> LightSet::sample_reusing(Vec3 ref, Vec3 n, Vec2 u) const {
     const size_t count = m_lights.size();
     if (count == 0 || count > max_lights_by_importance) return sample_reusing(ref, u);
+    // A single light is chosen whatever its importance, which decides only whether its sampling
+    // is told the normal (not where the importance is 0): one that does not read it is sampled
+    // straight away, the same bits without the importance computed.
+    if (count == 1 && !m_lights[0]->samples_by_normal()) return sample_chosen(0, 0, 1, ref, n, u);
     // A share of the power choice keeps every light possible however rough the bound is.
     constexpr float power_share = 0.1f;
     std::array<float, max_lights_by_importance> cdf;

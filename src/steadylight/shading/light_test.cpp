@@ -342,6 +342,32 @@ TEST(LightSet, ChoosingByImportanceFavoursTheLightThatCanReachThePointAndStaysUn
     EXPECT_NEAR(sum / n, sum_by_power / n, 0.01 * sum_by_power / n);
 }
 
+// With one light the choice is certain: choosing by importance samples it exactly as choosing by
+// power does, wherever the point is and whichever way it faces (importance 0 included: behind
+// the light, or the light behind the surface), to the bit.
+TEST(LightSet, OneLightIsSampledAlikeChosenByImportanceOrByPower) {
+    const Lit lit(scene_with({ceiling_light(0.5f, 1, {1, 1, 1}, 0.2f)}));
+    Pcg32 rng(3);
+    int compared = 0, lit_samples = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 ref{rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, rng.next_float() * 3 - 1};
+        const Vec3 n = sample_uniform_sphere(rng.next_vec2());
+        const Vec2 u = rng.next_vec2();
+        const std::optional<LightSample> by_importance = lit.lights.sample_reusing(ref, n, u);
+        const std::optional<LightSample> by_power = lit.lights.sample_reusing(ref, u);
+        ASSERT_EQ(by_importance.has_value(), by_power.has_value());
+        ++compared;
+        if (!by_power) continue;
+        lit_samples += !is_black(by_power->Li);
+        EXPECT_EQ(by_importance->p, by_power->p);
+        EXPECT_EQ(by_importance->wi, by_power->wi);
+        EXPECT_EQ(by_importance->Li, by_power->Li);
+        EXPECT_EQ(by_importance->pdf, by_power->pdf);
+    }
+    EXPECT_EQ(compared, 2000);
+    EXPECT_GT(lit_samples, 500);
+}
+
 PointLightDesc point_light(Vec3 position, Rgb intensity) {
     PointLightDesc light;
     light.position = position;
