@@ -74,8 +74,8 @@ TEST(PhotonMap, KNearestBreaksTiesByIndexLikeBruteForce) {
 }
 
 // Told of a point it holds (the last look-up's answer, nearby), the nearest search answers as
-// without it: with duplicates at the same spot, a known point nearer, level with or farther than
-// the answer, and one outside the radius, which is not told.
+// without it: told of the answer itself, of a duplicate level with it (a smaller or larger index)
+// or of a farther point; points outside the radius are not told.
 TEST(PhotonMap, NearestToldOfAPointAnswersAsWithout) {
     std::vector<Vec3> points = random_points(3000, 6);
     for (int i = 0; i < 3000; i += 3) points[size_t(i)] = points[size_t(i / 2)];  // duplicates
