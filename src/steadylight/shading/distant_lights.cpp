@@ -245,13 +245,14 @@ public:
             m_aimed = m_targets->aimed_directions([this](Vec3 d) { return luminance(m_map->radiance(-d)); });
     }
 
+    bool samples_by_normal() const override { return true; }
+
     /// Facing a normal, a mix (Shares): for a uniform colour cosine-weighted about it three times
     /// in four, else uniformly; for an image mostly by its light times the cosine
     /// (EnvironmentMap::sample_facing), and by its light alone (which finds a small bright sun
     /// exactly) or cosine-weighted besides; so that every lit direction keeps a chance (light
     /// from behind a rough pane). Inside a room with portals, through a portal half of the time
     /// (three times in four for a uniform colour), else by the map.
-    bool samples_by_normal() const override { return true; }
     std::optional<LightSample> sample_li(Vec3 ref, Vec2 u, Vec3 n) const override {
         const Shares shares = shares_at(ref, n);
         LightSample s;

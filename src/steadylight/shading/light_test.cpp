@@ -348,7 +348,7 @@ TEST(LightSet, ChoosingByImportanceFavoursTheLightThatCanReachThePointAndStaysUn
 TEST(LightSet, OneLightIsSampledAlikeChosenByImportanceOrByPower) {
     const Lit lit(scene_with({ceiling_light(0.5f, 1, {1, 1, 1}, 0.2f)}));
     Pcg32 rng(3);
-    int compared = 0, lit_samples = 0;
+    int lit_samples = 0;
     for (int i = 0; i < 2000; ++i) {
         const Vec3 ref{rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, rng.next_float() * 3 - 1};
         const Vec3 n = sample_uniform_sphere(rng.next_vec2());
@@ -356,7 +356,6 @@ TEST(LightSet, OneLightIsSampledAlikeChosenByImportanceOrByPower) {
         const std::optional<LightSample> by_importance = lit.lights.sample_reusing(ref, n, u);
         const std::optional<LightSample> by_power = lit.lights.sample_reusing(ref, u);
         ASSERT_EQ(by_importance.has_value(), by_power.has_value());
-        ++compared;
         if (!by_power) continue;
         lit_samples += !is_black(by_power->Li);
         EXPECT_EQ(by_importance->p, by_power->p);
@@ -364,7 +363,6 @@ TEST(LightSet, OneLightIsSampledAlikeChosenByImportanceOrByPower) {
         EXPECT_EQ(by_importance->Li, by_power->Li);
         EXPECT_EQ(by_importance->pdf, by_power->pdf);
     }
-    EXPECT_EQ(compared, 2000);
     EXPECT_GT(lit_samples, 500);
 }
 
