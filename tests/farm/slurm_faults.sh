@@ -6,7 +6,9 @@
 # To stop a task mid-chunk at the same point in every run, its jobs are submitted held
 # (SBATCH_HOLD), the bake released, the array released while the test holds the folder's lock
 # (a lock file naming this shell: the task waits at it before any frame), and the task's process stopped (SIGSTOP) and then run
-# in slices of 10 ms until one frame of its chunk is complete and it is inside the next one.
+# in slices of about a millisecond until one frame of its chunk is complete and it is inside the
+# next one (a frame at this size takes 10-30 ms, its write a few: longer slices can step over
+# that moment and past the chunk's end).
 # 1. A task killed mid-chunk (SIGKILL of its steadylight process, which leaves its claim): the
 #    finishing job fails naming the frames the task did not write; the resubmission renders only
 #    those, takes the dead claim over at once (its pid on this host is gone) and removes the
@@ -76,13 +78,13 @@ stopped() {  # stopped PID: every thread of the process is stopped
   done
 }
 
-# Runs the stopped process PID in slices of 10 ms until a frame of FIRST..LAST is complete and
+# Runs the stopped process PID in slices of about 1 ms until a frame of FIRST..LAST is complete and
 # the one claim of the chunk is another's, not complete (the task is inside that frame, its
 # earlier frames written and their claims gone), with DIR's lock free; leaves it stopped there.
 # Sets inside (that frame).
 step_to_mid_chunk() {  # step_to_mid_chunk PID DIR FIRST LAST
   local frame base written claims seen=
-  for _ in $(seq 3000); do
+  for _ in $(seq 20000); do
     kill -0 "$1" 2>/dev/null || fail "the task (pid $1) ended before it was stopped inside its chunk; last seen:$seen"
     if stopped "$1"; then
       written=0 claims=() seen=
@@ -95,8 +97,8 @@ step_to_mid_chunk() {  # step_to_mid_chunk PID DIR FIRST LAST
       [ $written = 1 ] && [ ${#claims[@]} = 1 ] && [ ! -e "$(printf "%s/ball_%04d.manifest.json" "$2" "$inside")" ] &&
         [ ! -e "$2/.steadylight.lock" ] && return 0
       kill -CONT "$1"
-      sleep 0.01
-      kill -STOP "$1"
+      sleep 0.001
+      kill -STOP "$1" 2>/dev/null || fail "the task (pid $1) ended within a slice, past its chunk's middle; last seen:$seen"
     fi
     sleep 0.002
   done
