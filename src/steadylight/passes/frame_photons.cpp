@@ -12,20 +12,20 @@ TracedPhotons frame_maps(const FrameContext& context, const PhotonMappingSetting
                          const StaticPhotonPaths* paths, bool compose, const IrradiancePhotons* static_irradiance,
                          ChangedValues changed, FramePhotons::CausticChanges& caustic_changes,
                          std::shared_ptr<const StaticIrradianceReuse>& reuse) {
-    const auto reuse_of = [&](const PhotonMap& global, std::vector<uint32_t> static_ids) {
+    const auto reuse_of = [&](const PhotonMap& global, KeptStaticPhotons kept) {
         if (static_irradiance)
-            reuse = make_static_irradiance_reuse(*static_irradiance, paths->global.photons, global,
-                                                 std::move(static_ids), changed, context.tracer.dynamic_bounds());
+            reuse = make_static_irradiance_reuse(*static_irradiance, paths->global.photons, global, std::move(kept),
+                                                 changed, context.tracer.dynamic_bounds());
     };
     if (!paths || !compose) {
         TracedPhotons traced = trace_photons(context, settings.photons);
-        if (paths) reuse_of(traced.global, static_ids_by_bits(traced.global, paths->global.photons));
+        if (paths) reuse_of(traced.global, kept_static_photons_by_bits(traced.global, paths->global.photons));
         return traced;
     }
     ComposedPhotons composed = compose_photons(context, *paths);
     stats.retraced_photon_paths = composed.retraced_paths + (composed.caustic_traced ? paths->caustic.count : 0);
     caustic_changes = {composed.caustic_traced, std::move(composed.changed_caustic_points)};
-    reuse_of(composed.maps.global, std::move(composed.global_static_ids));
+    reuse_of(composed.maps.global, std::move(composed.global_kept));
     return std::move(composed.maps);
 }
 

@@ -73,7 +73,8 @@ TEST(FramePhotons, CarriedValuesAreTheSameComposedOrTracedWhole) {
         const FramePhotons traced(placed.context(), ball.settings, stats, ball.paths.get(), values,
                                   ChangedValues::carried, false);
         ASSERT_TRUE(same_photons(composed.maps.global, traced.maps.global)) << what;
-        ASSERT_EQ(composed.static_reuse->static_ids, traced.static_reuse->static_ids) << what;
+        ASSERT_EQ(composed.static_reuse->kept.frame_ids, traced.static_reuse->kept.frame_ids) << what;
+        ASSERT_EQ(composed.static_reuse->kept.added_ids, traced.static_reuse->kept.added_ids) << what;
         expect_same_look_ups(composed.irradiance, traced.irradiance, traced.maps.global, what);
         // Every way was taken, composed and traced whole alike: values reused as they are,
         // carried, and estimated again near the ball (new photons there, or so many removed

@@ -176,41 +176,46 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
     static std::atomic<uint64_t> made = 0;
     m_id = ++made;
     SL_CHECK(stride >= 1);
-    SL_CHECK(!m_reuse || m_reuse->static_ids.size() == global.size());
     const std::vector<Photon>& photons = global.photons();
-    std::vector<Vec3> positions;
-    // About as many carriers as the static map's (a frame changes a few), or one in `stride`.
-    const size_t expected = (m_reuse ? m_reuse->values->size() : photons.size() / size_t(stride)) * 17 / 16 + 16;
-    m_photon.reserve(expected), m_hash.reserve(expected), m_n.reserve(expected), positions.reserve(expected);
-    if (m_reuse) m_static_carrier.reserve(expected);
-    const auto add_carrier = [&](uint32_t photon, uint64_t hash, uint32_t static_carrier) {
-        m_photon.push_back(photon);
-        m_hash.push_back(hash);
-        m_n.push_back(photons[photon].n);
-        positions.push_back(photons[photon].p);
-        if (m_reuse) m_static_carrier.push_back(static_carrier);
+    struct Carrier {
+        uint32_t photon;
+        uint64_t hash;
+        uint32_t static_carrier;  // or PointIndex::removed
     };
-    // A photon kept from the static map carries a value where its static photon does (the same
-    // bits, the same hash): found by walking the static carriers along, as the kept photons come
-    // in the static map's order (else searched for), and its hash not computed again.
+    std::vector<Carrier> carriers;
+    // The photon's own hash: the same photon in the static map and in a frame's.
+    const auto carrier_if_chosen = [&](uint32_t photon) {
+        const uint64_t hash = hash_bits(photons[photon].p, photons[photon].wi);
+        if (hash % uint64_t(stride) == 0) carriers.push_back({photon, hash, PointIndex::removed});
+    };
     const IrradiancePhotons* from = m_reuse ? m_reuse->values : nullptr;
-    size_t next_static = 0;  // the first static carrier whose photon is not below the last static id
-    for (size_t i = 0; i < photons.size(); ++i) {
-        const uint32_t static_id = m_reuse ? m_reuse->static_ids[i] : PointIndex::removed;
-        if (static_id != PointIndex::removed) {
-            const std::vector<uint32_t>& carriers = from->m_photon;
-            if (next_static > 0 && carriers[next_static - 1] >= static_id)  // out of order: search
-                next_static = size_t(std::lower_bound(carriers.begin(), carriers.end(), static_id) - carriers.begin());
-            while (next_static < carriers.size() && carriers[next_static] < static_id) ++next_static;
-            if (next_static < carriers.size() && carriers[next_static] == static_id) {
-                add_carrier(uint32_t(i), from->m_hash[next_static], uint32_t(next_static));
-                ++next_static;
-            }
-            continue;
-        }
-        // The photon's own hash: the same photon in the static map and in a frame's.
-        const uint64_t hash = hash_bits(photons[i].p, photons[i].wi);
-        if (hash % uint64_t(stride) == 0) add_carrier(uint32_t(i), hash, PointIndex::removed);
+    if (from) {
+        // A photon kept from the static map carries a value where its static photon does (the
+        // same bits, the same hash): the static carriers kept, then the new photons chosen, put
+        // in the frame's order.
+        const KeptStaticPhotons& kept = m_reuse->kept;
+        SL_CHECK(kept.frame_ids.size() == from->m_global->size());
+        carriers.reserve(from->size() + kept.added_ids.size() / size_t(stride) * 17 / 16 + 16);
+        for (uint32_t j = 0; j < from->size(); ++j)
+            if (const uint32_t photon = kept.frame_ids[from->m_photon[j]]; photon != PointIndex::removed)
+                carriers.push_back({photon, from->m_hash[j], j});
+        const long kept_count = long(carriers.size());
+        for (const uint32_t photon : kept.added_ids) carrier_if_chosen(photon);
+        const auto by_photon = [](const Carrier& a, const Carrier& b) { return a.photon < b.photon; };
+        const auto kept_end = carriers.begin() + kept_count;
+        if (!std::is_sorted(carriers.begin(), kept_end, by_photon)) std::sort(carriers.begin(), kept_end, by_photon);
+        std::inplace_merge(carriers.begin(), kept_end, carriers.end(), by_photon);
+    } else {
+        carriers.reserve(photons.size() / size_t(stride) * 17 / 16 + 16);
+        for (uint32_t i = 0; i < photons.size(); ++i) carrier_if_chosen(i);
+    }
+    m_photon.resize(carriers.size()), m_hash.resize(carriers.size()), m_n.resize(carriers.size());
+    if (from) m_static_carrier.resize(carriers.size());
+    for (size_t i = 0; i < carriers.size(); ++i) {
+        m_photon[i] = carriers[i].photon;
+        m_hash[i] = carriers[i].hash;
+        m_n[i] = photons[carriers[i].photon].n;
+        if (from) m_static_carrier[i] = carriers[i].static_carrier;
     }
     m_values.resize(m_photon.size());
     m_state = std::make_unique<std::atomic<uint8_t>[]>(m_photon.size());  // value-initialised: all empty
@@ -218,6 +223,8 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
         m_wider.resize(m_photon.size());
         m_wider_state = std::make_unique<std::atomic<uint8_t>[]>(m_photon.size());
     }
+    std::vector<Vec3> positions(m_photon.size());
+    for (size_t i = 0; i < m_photon.size(); ++i) positions[i] = photons[m_photon[i]].p;
     m_index = PointIndex(positions);
 }
 
@@ -283,7 +290,7 @@ bool IrradiancePhotons::nearest_from_static(uint32_t i, std::vector<Neighbour>& 
     const IrradiancePhotons& from = *m_reuse->values;
     return m_global->k_nearest_from_base(m_global->photons()[m_photon[i]].p, m_settings.k, m_settings.max_radius,
                                          *from.m_global, from.wider_nearest(j), m_settings.k + wider_margin,
-                                         m_reuse->frame_ids, out);
+                                         m_reuse->kept.frame_ids, out);
 }
 
 const IrradiancePhotons::Value& IrradiancePhotons::value(uint32_t i) const {
@@ -326,6 +333,28 @@ void IrradiancePhotons::compute_all() const {
 }
 
 std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) const {
+    // The value of the first of `neighbours` (nearest first) whose normal agrees and whose disc
+    // the surface at p reaches.
+    const auto first_agreeing = [&](const std::vector<Neighbour>& neighbours) -> std::optional<Rgb> {
+        for (const Neighbour& nb : neighbours) {
+            if (!same_side(m_n[nb.index], n)) continue;
+            const Value& value = this->value(nb.index);
+            const float radius = value.radius;
+            const DiscProbes& disc = value.probes;
+            if (!m_coverage) return value.E;
+            // Untested when p lies on the photon's surface as its own estimate saw it: within
+            // its disc, in a cell its surface reaches, and the photon not in front of p's plane.
+            const Photon& photon = m_global->photons()[m_photon[nb.index]];
+            const float distance = std::sqrt(nb.distance2);
+            bool untested = nb.distance2 < radius * radius && dot(photon.p - p, n) <= coverage_lift * distance;
+            if (untested && disc.share() < 1) {
+                const Vec3 local = OrthonormalBasis::from_normal(photon.n).to_local(p - photon.p);
+                untested = disc.reached_cell(local.x, local.y, radius * radius);
+            }
+            if (untested || m_coverage.reaches(p, n, distance, photon.p)) return value.E;
+        }
+        return std::nullopt;
+    };
     // Most look-ups are answered by the single nearest photon; only near creases and thin walls
     // does its normal disagree, and then the next few are tried.
     thread_local std::vector<Neighbour> neighbours;
@@ -336,89 +365,62 @@ std::optional<Rgb> IrradiancePhotons::lookup(Vec3 p, Vec3 n, float max_radius) c
         uint32_t value = 0;
     } last;
     const float max_distance2 = max_radius * max_radius;
-    for (const int k : {1, 8}) {
-        if (k == 1) {
-            std::optional<Neighbour> known;
-            if (last.of == m_id) {
-                const float distance2 = PointIndex::distance2(m_global->photons()[m_photon[last.value]].p, p);
-                if (distance2 <= max_distance2) known = Neighbour{last.value, distance2};
-            }
-            const std::optional<Neighbour> found = m_index.nearest(p, max_distance2, known);
-            neighbours.clear();
-            if (found) {
-                neighbours.push_back(*found);
-                last = {m_id, found->index};
-            }
-        } else {
-            m_index.k_nearest(p, k, max_distance2, neighbours);
-        }
-        for (const Neighbour& nb : neighbours) {
-            if (!same_side(m_n[nb.index], n)) continue;
-            const Value& value = this->value(nb.index);
-            const Rgb E = value.E;
-            const float radius = value.radius;
-            const DiscProbes& disc = value.probes;
-            if (!m_coverage) return E;
-            // Untested when p lies on the photon's surface as its own estimate saw it: within
-            // its disc, in a cell its surface reaches, and the photon not in front of p's plane.
-            const Photon& photon = m_global->photons()[m_photon[nb.index]];
-            const float distance = std::sqrt(nb.distance2);
-            bool untested = nb.distance2 < radius * radius && dot(photon.p - p, n) <= coverage_lift * distance;
-            if (untested && disc.share() < 1) {
-                const Vec3 local = OrthonormalBasis::from_normal(photon.n).to_local(p - photon.p);
-                untested = disc.reached_cell(local.x, local.y, radius * radius);
-            }
-            if (untested || m_coverage.reaches(p, n, distance, photon.p)) return E;
-        }
-        if (int(neighbours.size()) < k) break;  // nothing further within reach
+    std::optional<Neighbour> known;
+    if (last.of == m_id) {
+        const float distance2 = PointIndex::distance2(m_global->photons()[m_photon[last.value]].p, p);
+        if (distance2 <= max_distance2) known = Neighbour{last.value, distance2};
     }
-    return std::nullopt;
+    const std::optional<Neighbour> nearest = m_index.nearest(p, max_distance2, known);
+    if (!nearest) return std::nullopt;  // nothing within reach
+    last = {m_id, nearest->index};
+    neighbours.assign(1, *nearest);
+    if (const std::optional<Rgb> E = first_agreeing(neighbours)) return E;
+    m_index.k_nearest(p, 8, max_distance2, neighbours);
+    return first_agreeing(neighbours);
 }
 
 std::shared_ptr<const StaticIrradianceReuse> make_static_irradiance_reuse(
-    const IrradiancePhotons& values, const PhotonMap& static_map, const PhotonMap& frame_map,
-    std::vector<uint32_t> static_ids, ChangedValues changed_values, std::vector<BoundingSphere> dynamic) {
-    SL_CHECK_EQ(static_ids.size(), frame_map.size());
+    const IrradiancePhotons& values, const PhotonMap& static_map, const PhotonMap& frame_map, KeptStaticPhotons kept,
+    ChangedValues changed_values, std::vector<BoundingSphere> dynamic) {
+    SL_CHECK_EQ(kept.frame_ids.size(), static_map.size());
     auto reuse = std::make_shared<StaticIrradianceReuse>();
     reuse->values = &values;
-    reuse->frame_ids.assign(static_map.size(), PointIndex::removed);
-    for (size_t i = 0; i < static_ids.size(); ++i)
-        if (static_ids[i] != PointIndex::removed) reuse->frame_ids[static_ids[i]] = uint32_t(i);
     for (size_t i = 0; i < static_map.size(); ++i) {
-        if (reuse->frame_ids[i] != PointIndex::removed) continue;
+        if (kept.frame_ids[i] != PointIndex::removed) continue;
         Photon removed = static_map.photons()[i];
         removed.power = removed.power * -1.0f;  // exact
         reuse->changes.push_back(removed);
     }
-    for (size_t i = 0; i < static_ids.size(); ++i)
-        if (static_ids[i] == PointIndex::removed) reuse->changes.push_back(frame_map.photons()[i]);
+    for (const uint32_t i : kept.added_ids) reuse->changes.push_back(frame_map.photons()[i]);
     reuse->changed = PointIndex(positions_of(reuse->changes));
-    reuse->static_ids = std::move(static_ids);
+    reuse->kept = std::move(kept);
     reuse->changed_values = changed_values;
     reuse->dynamic = std::move(dynamic);
     return reuse;
 }
 
-std::vector<uint32_t> static_ids_by_bits(const PhotonMap& frame_map, const PhotonMap& static_map) {
+KeptStaticPhotons kept_static_photons_by_bits(const PhotonMap& frame_map, const PhotonMap& static_map) {
     // Static photons by their bits, equal ones in order; each frame photon takes the first left.
     const auto bits_hash = [](const Photon& photon) { return hash_bits(photon.p, photon.wi); };
     std::unordered_multimap<uint64_t, uint32_t> by_hash;
     by_hash.reserve(static_map.size());
     for (size_t i = 0; i < static_map.size(); ++i) by_hash.emplace(bits_hash(static_map.photons()[i]), uint32_t(i));
-    std::vector<uint32_t> static_ids(frame_map.size(), PointIndex::removed);
-    std::vector<bool> taken(static_map.size(), false);
+    KeptStaticPhotons kept;
+    kept.frame_ids.assign(static_map.size(), PointIndex::removed);
     for (size_t i = 0; i < frame_map.size(); ++i) {
         const Photon& photon = frame_map.photons()[i];
         const auto [first, last] = by_hash.equal_range(bits_hash(photon));
         uint32_t best = PointIndex::removed;
         for (auto it = first; it != last; ++it)
-            if (!taken[it->second] && same_bits(static_map.photons()[it->second], photon) && it->second < best)
+            if (kept.frame_ids[it->second] == PointIndex::removed &&
+                same_bits(static_map.photons()[it->second], photon) && it->second < best)
                 best = it->second;
-        if (best == PointIndex::removed) continue;
-        taken[best] = true;
-        static_ids[i] = best;
+        if (best == PointIndex::removed)
+            kept.added_ids.push_back(uint32_t(i));
+        else
+            kept.frame_ids[best] = uint32_t(i);
     }
-    return static_ids;
+    return kept;
 }
 
 bool same_photons(const PhotonMap& a, const PhotonMap& b) {

@@ -121,6 +121,14 @@ class IrradiancePhotons;
 /// needs, not the photon method's every value, a list for each being 300 bytes).
 enum class ChangedValues { searched, carried };
 
+/// Which photons of a frame's global map are the static map's, kept: per static photon, its
+/// photon in the frame's map (or PointIndex::removed); and the frame's photons that are none
+/// of them (new), ascending.
+struct KeptStaticPhotons {
+    std::vector<uint32_t> frame_ids;
+    std::vector<uint32_t> added_ids;
+};
+
 /// What a frame's irradiance photons take from the segment's static ones instead of estimating
 /// again (docs/notes/localized-irradiance-at-photons.md): the value at a photon the frame
 /// kept from the static map is the static one where no photon was removed or added within its
@@ -130,8 +138,7 @@ enum class ChangedValues { searched, carried };
 /// photons were removed or added, `changed_values` says what to do.
 struct StaticIrradianceReuse {
     const IrradiancePhotons* values = nullptr;  // over the static map, probing the static scene
-    std::vector<uint32_t> static_ids;  // per photon of the frame's map: its static photon, or PointIndex::removed
-    std::vector<uint32_t> frame_ids;   // per static photon: its photon in the frame's map, or PointIndex::removed
+    KeptStaticPhotons kept;
     ChangedValues changed_values = ChangedValues::searched;
     // The static photons removed, their power negated, then the photons added, each in its map's
     // order, and their index.
@@ -140,16 +147,16 @@ struct StaticIrradianceReuse {
     std::vector<BoundingSphere> dynamic;  // the dynamic objects
 };
 
-/// The reuse of `values` (over `static_map`) by a frame whose global map is `frame_map`,
-/// `static_ids` giving each of its photons' static photon (or PointIndex::removed).
+/// The reuse of `values` (over `static_map`) by a frame whose global map is `frame_map`, which
+/// keeps `kept` of the static photons.
 std::shared_ptr<const StaticIrradianceReuse> make_static_irradiance_reuse(
-    const IrradiancePhotons& values, const PhotonMap& static_map, const PhotonMap& frame_map,
-    std::vector<uint32_t> static_ids, ChangedValues changed_values, std::vector<BoundingSphere> dynamic);
+    const IrradiancePhotons& values, const PhotonMap& static_map, const PhotonMap& frame_map, KeptStaticPhotons kept,
+    ChangedValues changed_values, std::vector<BoundingSphere> dynamic);
 
-/// Each photon of `frame_map` that is a photon of `static_map` bit for bit (same_bits): its
-/// index there, in order among equal ones; else PointIndex::removed. For a frame traced whole,
-/// the static_ids its composition from the static paths would have given.
-std::vector<uint32_t> static_ids_by_bits(const PhotonMap& frame_map, const PhotonMap& static_map);
+/// The photons of `frame_map` that are photons of `static_map` bit for bit (same_bits), equal
+/// ones taken in order. For a frame traced whole, what its composition from the static paths
+/// would have told.
+KeptStaticPhotons kept_static_photons_by_bits(const PhotonMap& frame_map, const PhotonMap& static_map);
 
 /// Irradiance precomputed at one in `stride` photons of a global map (Christensen 1999), chosen
 /// by a hash of the photon itself, so that a photon a frame keeps from the static map carries a

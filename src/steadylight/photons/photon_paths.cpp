@@ -231,9 +231,7 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     std::vector<Photon> dynamic_photons = compose_dynamic(global, global_changes);
     add_moving_paths(context, global, paths.settings, MapKind::global, global_split, dynamic, composed,
                      &dynamic_photons);
-    out.global_static_ids.assign(composed.photons.size(), PointIndex::removed);
-    for (size_t i = 0; i < composed.base_ids.size(); ++i)
-        if (composed.base_ids[i] != PointIndex::removed) out.global_static_ids[composed.base_ids[i]] = uint32_t(i);
+    out.global_kept = {composed.base_ids, composed.added_ids};
     out.maps.global = PhotonMap(std::move(composed.photons), global_split.total, global.photons,
                                 std::move(composed.base_ids), std::move(composed.added_ids));
     out.maps.dynamic = PhotonMap(std::move(dynamic_photons), dynamic ? global_split.total : 0);

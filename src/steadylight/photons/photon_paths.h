@@ -57,7 +57,7 @@ StaticPhotonPaths trace_static_photon_paths(const FrameContext& context, const P
 /// A frame's maps composed from the static paths, and how many paths it retraced.
 struct ComposedPhotons {
     TracedPhotons maps;
-    std::vector<uint32_t> global_static_ids;  // per global photon: the static one it is, or PointIndex::removed (new)
+    KeptStaticPhotons global_kept;  // which global photons are static ones
     long retraced_paths = 0;
     long caustic_retraced_paths = 0;           // of them caustic ones
     bool caustic_traced = false;               // the caustic map was traced whole: its targets moved

@@ -197,25 +197,36 @@ std::vector<uint32_t> PointIndex::in_tree_order(const std::vector<uint32_t>& by_
     return ids;
 }
 
+template <class Heap, class Part>
+void PointIndex::search_part(const float p[3], Heap& heap, const Part& part) {
+    const auto& [index, ids] = part;
+    if (!index->m_entries.empty()) index->search(0, uint32_t(index->m_entries.size()), p, CellDistance{}, heap, ids);
+}
+
+template <class... Parts>
+std::optional<Neighbour> PointIndex::search_nearest(Vec3 p, float max_distance2, std::optional<Neighbour> known,
+                                                    Parts... parts) {
+    const float query[3] = {p.x, p.y, p.z};
+    NearestOne nearest(max_distance2);
+    if (known) nearest.offer(known->index, known->distance2);
+    (search_part(query, nearest, parts), ...);
+    if (!nearest.size()) return std::nullopt;
+    return nearest.best();
+}
+
 template <class... Parts>
 void PointIndex::search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts) {
     out.clear();
     if (k <= 0) return;
-    const float query[3] = {p.x, p.y, p.z};
-    const auto search_part = [&](auto& heap, const auto& part) {
-        const auto& [index, ids] = part;
-        if (!index->m_entries.empty())
-            index->search(0, uint32_t(index->m_entries.size()), query, CellDistance{}, heap, ids);
-    };
     if (k == 1) {
-        NearestOne nearest(max_distance2);
-        (search_part(nearest, parts), ...);
-        if (nearest.size()) out.push_back(nearest.best());
+        if (const std::optional<Neighbour> found = search_nearest(p, max_distance2, std::nullopt, parts...))
+            out.push_back(*found);
         return;
     }
+    const float query[3] = {p.x, p.y, p.z};
     out.resize(size_t(k));
     BoundedHeap heap(out.data(), k, max_distance2);
-    (search_part(heap, parts), ...);
+    (search_part(query, heap, parts), ...);
     heap.sort();
     out.resize(size_t(heap.size()));
 }
@@ -225,12 +236,7 @@ void PointIndex::search_within(Vec3 p, float max_distance2, std::vector<Neighbou
     out.clear();
     const float query[3] = {p.x, p.y, p.z};
     EveryWithin collector(out, max_distance2);
-    const auto search_part = [&](const auto& part) {
-        const auto& [index, ids] = part;
-        if (!index->m_entries.empty())
-            index->search(0, uint32_t(index->m_entries.size()), query, CellDistance{}, collector, ids);
-    };
-    (search_part(parts), ...);
+    (search_part(query, collector, parts), ...);
 }
 
 void PointIndex::within(Vec3 p, float max_distance2, std::vector<Neighbour>& out) const {
@@ -242,14 +248,7 @@ void PointIndex::within(Mapped a, Mapped b, Vec3 p, float max_distance2, std::ve
 }
 
 std::optional<Neighbour> PointIndex::nearest(Vec3 p, float max_distance2, std::optional<Neighbour> known) const {
-    NearestOne nearest(max_distance2);
-    if (known) nearest.offer(known->index, known->distance2);
-    if (!m_entries.empty()) {
-        const float query[3] = {p.x, p.y, p.z};
-        search(0, uint32_t(m_entries.size()), query, CellDistance{}, nearest, OwnIds{});
-    }
-    if (!nearest.size()) return std::nullopt;
-    return nearest.best();
+    return search_nearest(p, max_distance2, known, std::pair{this, OwnIds{}});
 }
 
 void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {

@@ -95,12 +95,19 @@ private:
     void build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper);
     template <class Heap, class Ids>
     void search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap, Ids ids) const;
-    /// Searches each of `parts` (index and ids) into one heap, then moves its result to `out`;
-    /// search_within collects every point within the radius instead.
-    template <class... Parts>
-    static void search_within(Vec3 p, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
+    /// Searches one part (index and ids) into `heap`.
+    template <class Heap, class Part>
+    static void search_part(const float p[3], Heap& heap, const Part& part);
+    /// Searches each of `parts` into one heap, then moves its result to `out`; search_nearest
+    /// keeps only the nearest, pruning from `known` on; search_within collects every point
+    /// within the radius instead.
     template <class... Parts>
     static void search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
+    template <class... Parts>
+    static std::optional<Neighbour> search_nearest(Vec3 p, float max_distance2, std::optional<Neighbour> known,
+                                                   Parts... parts);
+    template <class... Parts>
+    static void search_within(Vec3 p, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
 
     std::vector<Entry> m_entries;  // in tree order
     // A range [begin, end) longer than a leaf splits at mid = (begin + end) / 2 into [begin, mid)
