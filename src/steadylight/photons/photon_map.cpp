@@ -65,15 +65,14 @@ PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted)
       m_emitted(emitted),
       m_index(std::make_shared<const PointIndex>(positions_of(m_photons))) {}
 
-PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap& base, std::vector<uint32_t> base_ids,
-                     std::vector<uint32_t> added_ids)
+PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap& base, const KeptStaticPhotons& kept)
     : m_photons(std::move(photons)), m_emitted(emitted), m_index(base.m_index) {
-    SL_CHECK(!base.m_overlay && base_ids.size() == base.size());
+    SL_CHECK(!base.m_overlay && kept.frame_ids.size() == base.size());
     if (!m_index) m_index = std::make_shared<const PointIndex>();  // base is an empty map
-    PointIndex added(positions_of(m_photons, added_ids));
-    std::vector<uint32_t> added_tree_ids = added.in_tree_order(added_ids);
+    PointIndex added(positions_of(m_photons, kept.added_ids));
+    std::vector<uint32_t> added_tree_ids = added.in_tree_order(kept.added_ids);
     m_overlay = std::make_shared<const Overlay>(
-        Overlay{m_index->in_tree_order(base_ids), std::move(added_tree_ids), std::move(added)});
+        Overlay{m_index->in_tree_order(kept.frame_ids), std::move(added_tree_ids), std::move(added)});
 }
 
 size_t PhotonMap::indexed_here() const { return m_overlay ? m_overlay->added.size() : m_photons.size(); }

@@ -29,18 +29,26 @@ struct DensitySettings {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(DensitySettings, k, max_radius)
 void validate(const DensitySettings& settings, const std::string& where);
 
+/// Which photons of a frame's map are the static map's, kept: per static photon, its photon in
+/// the frame's map (or PointIndex::removed); and the frame's photons that are none of them
+/// (new), ascending.
+struct KeptStaticPhotons {
+    std::vector<uint32_t> frame_ids;
+    std::vector<uint32_t> added_ids;
+};
+
 class PhotonMap {
 public:
     PhotonMap() = default;
     /// `emitted` is the number of photon paths the photons came from (for statistics).
     PhotonMap(std::vector<Photon> photons, long emitted);
     /// A map of `base`'s photons with some of them removed and others added, without indexing
-    /// them all again: base photon i is `photons[base_ids[i]]` (or gone: PointIndex::removed), the
-    /// added ones are `photons[added_ids[j]]`, and the ids keep base's order. Look-ups search
-    /// base's index and a small one of the added photons and answer exactly as a map built over
-    /// `photons` would. `base` must be a map of its own (not composed like this).
-    PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap& base, std::vector<uint32_t> base_ids,
-              std::vector<uint32_t> added_ids);
+    /// them all again: base photon i is `photons[kept.frame_ids[i]]` (or gone:
+    /// PointIndex::removed), the added ones are `photons[kept.added_ids[j]]`, and the ids keep
+    /// base's order. Look-ups search base's index and a small one of the added photons and
+    /// answer exactly as a map built over `photons` would. `base` must be a map of its own (not
+    /// composed like this).
+    PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap& base, const KeptStaticPhotons& kept);
 
     const std::vector<Photon>& photons() const { return m_photons; }
     size_t size() const { return m_photons.size(); }
@@ -120,14 +128,6 @@ class IrradiancePhotons;
 /// more (IrradiancePhotons::wider_nearest, kept once found: for the few values a localized frame
 /// needs, not the photon method's every value, a list for each being 300 bytes).
 enum class ChangedValues { searched, carried };
-
-/// Which photons of a frame's global map are the static map's, kept: per static photon, its
-/// photon in the frame's map (or PointIndex::removed); and the frame's photons that are none
-/// of them (new), ascending.
-struct KeptStaticPhotons {
-    std::vector<uint32_t> frame_ids;
-    std::vector<uint32_t> added_ids;
-};
 
 /// What a frame's irradiance photons take from the segment's static ones instead of estimating
 /// again (docs/notes/localized-irradiance-at-photons.md): the value at a photon the frame

@@ -118,19 +118,19 @@ TEST(PhotonMap, ComposedMapAnswersAsAMapBuiltOverAllItsPhotons) {
     for (const Vec3& p : points) base_photons.push_back({p, {0, 0, 1}, {0, 0, 1}, {1, 1, 1}});
     const PhotonMap base(base_photons, 3000);
     std::vector<Photon> photons;
-    std::vector<uint32_t> base_ids(points.size(), PointIndex::removed), added_ids;
+    KeptStaticPhotons kept{std::vector<uint32_t>(points.size(), PointIndex::removed), {}};
     const std::vector<Vec3> extra = random_points(1000, 6);
     for (uint32_t i = 0; i < points.size(); ++i) {
-        if (i % 5 != 0) base_ids[i] = uint32_t(photons.size()), photons.push_back(base_photons[i]);
+        if (i % 5 != 0) kept.frame_ids[i] = uint32_t(photons.size()), photons.push_back(base_photons[i]);
         if (i % 7 == 0) {
             const Vec3 p = i % 2 ? points[(i * 13) % points.size()] : extra[i / 7];
-            added_ids.push_back(uint32_t(photons.size()));
+            kept.added_ids.push_back(uint32_t(photons.size()));
             photons.push_back({p, {0, 0, 1}, {0, 0, 1}, {2, 2, 2}});
         }
     }
-    const PhotonMap composed(photons, 3000, base, base_ids, added_ids);
+    const PhotonMap composed(photons, 3000, base, kept);
     const PhotonMap rebuilt(photons, 3000);
-    EXPECT_EQ(composed.indexed_here(), added_ids.size());
+    EXPECT_EQ(composed.indexed_here(), kept.added_ids.size());
     std::vector<Neighbour> a, b;
     for (const int k : {1, 7, 300, 5000})
         for (const Vec3& q : random_points(40, 7)) {
@@ -151,7 +151,7 @@ TEST(PhotonMap, ComposedMapAnswersAsAMapBuiltOverAllItsPhotons) {
                 base_list.clear();
                 for (const Neighbour& nb : b) base_list.push_back(nb.index);
                 rebuilt.k_nearest(q, k, 0.3f, b);
-                if (!composed.k_nearest_from_base(q, k, 0.3f, base, base_list, k + margin, base_ids, a)) {
+                if (!composed.k_nearest_from_base(q, k, 0.3f, base, base_list, k + margin, kept.frame_ids, a)) {
                     ++not_told;
                     continue;
                 }
@@ -163,7 +163,8 @@ TEST(PhotonMap, ComposedMapAnswersAsAMapBuiltOverAllItsPhotons) {
             }
     EXPECT_GT(told, 300);
     EXPECT_GT(not_told, 10);
-    EXPECT_FALSE(rebuilt.k_nearest_from_base(points[0], 7, 0.3f, base, base_list, 7, base_ids, a));  // not composed
+    EXPECT_FALSE(
+        rebuilt.k_nearest_from_base(points[0], 7, 0.3f, base, base_list, 7, kept.frame_ids, a));  // not composed
     // Every photon within a radius: the same set (in its own order), and exactly the photons a
     // brute-force scan finds.
     const auto sorted = [](std::vector<Neighbour> found) {

@@ -113,7 +113,7 @@ std::vector<ChunkChanges> retrace_changed(const FrameContext& context, const Pho
 /// Where a map's photons come from, as it is composed.
 struct Composition {
     std::vector<Photon> photons;
-    std::vector<uint32_t> base_ids, added_ids;
+    KeptStaticPhotons kept;
 };
 
 /// The static photons of a changed path that stay: those stored before its first dynamic ray.
@@ -129,13 +129,13 @@ uint32_t kept_end(const StoredPaths& paths, const ChangedPath& changed) {
 Composition compose_main(const StoredPaths& paths, const std::vector<ChunkChanges>& changes) {
     const std::vector<Photon>& base = paths.photons.photons();
     Composition c;
-    c.base_ids.assign(base.size(), PointIndex::removed);
+    c.kept.frame_ids.assign(base.size(), PointIndex::removed);
     c.photons.reserve(base.size());
     uint32_t cursor = 0;
     const auto keep = [&](uint32_t end) {
         if (end <= cursor) return;
         const uint32_t first = uint32_t(c.photons.size());
-        std::iota(c.base_ids.begin() + cursor, c.base_ids.begin() + end, first);
+        std::iota(c.kept.frame_ids.begin() + cursor, c.kept.frame_ids.begin() + end, first);
         c.photons.insert(c.photons.end(), base.begin() + cursor, base.begin() + end);
         cursor = end;
     };
@@ -143,7 +143,7 @@ Composition compose_main(const StoredPaths& paths, const std::vector<ChunkChange
         for (const ChangedPath& changed : chunk_changes.paths) {
             keep(kept_end(paths, changed));
             for (size_t i = changed.main_begin; i < changed.main_end; ++i) {
-                c.added_ids.push_back(uint32_t(c.photons.size()));
+                c.kept.added_ids.push_back(uint32_t(c.photons.size()));
                 c.photons.push_back(chunk_changes.main[i]);
             }
             cursor = paths.first_photon[changed.path + 1];
@@ -177,9 +177,9 @@ std::vector<Photon> compose_dynamic(const StoredPaths& paths, const std::vector<
 /// Where a composition over `base` removed its photons and added new ones.
 std::vector<Vec3> changed_points(const PhotonMap& base, const Composition& c) {
     std::vector<Vec3> points;
-    for (size_t i = 0; i < c.base_ids.size(); ++i)
-        if (c.base_ids[i] == PointIndex::removed) points.push_back(base.photons()[i].p);
-    for (const uint32_t i : c.added_ids) points.push_back(c.photons[i].p);
+    for (size_t i = 0; i < c.kept.frame_ids.size(); ++i)
+        if (c.kept.frame_ids[i] == PointIndex::removed) points.push_back(base.photons()[i].p);
+    for (const uint32_t i : c.kept.added_ids) points.push_back(c.photons[i].p);
     return points;
 }
 
@@ -195,7 +195,7 @@ void add_moving_paths(const FrameContext& context, const StoredPaths& paths, con
                               paths.targets ? &*paths.targets : nullptr);
     TracedPaths moving = trace_paths(tracer, kind, split, split.still, split.total, dynamic_map);
     for (const Photon& photon : moving.main) {
-        main.added_ids.push_back(uint32_t(main.photons.size()));
+        main.kept.added_ids.push_back(uint32_t(main.photons.size()));
         main.photons.push_back(photon);
     }
     if (dynamic) dynamic->insert(dynamic->end(), moving.dynamic.begin(), moving.dynamic.end());
@@ -231,9 +231,8 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     std::vector<Photon> dynamic_photons = compose_dynamic(global, global_changes);
     add_moving_paths(context, global, paths.settings, MapKind::global, global_split, dynamic, composed,
                      &dynamic_photons);
-    out.global_kept = {composed.base_ids, composed.added_ids};
-    out.maps.global = PhotonMap(std::move(composed.photons), global_split.total, global.photons,
-                                std::move(composed.base_ids), std::move(composed.added_ids));
+    out.maps.global = PhotonMap(std::move(composed.photons), global_split.total, global.photons, composed.kept);
+    out.global_kept = std::move(composed.kept);
     out.maps.dynamic = PhotonMap(std::move(dynamic_photons), dynamic ? global_split.total : 0);
     out.retraced_paths = changed_count(global_changes) + global_split.count(PhotonGroup::moving);
 
@@ -251,8 +250,7 @@ ComposedPhotons compose_photons(const FrameContext& context, const StaticPhotonP
     composed = compose_main(caustic, caustic_changes);
     add_moving_paths(context, caustic, paths.settings, MapKind::caustic, caustic_split, false, composed, nullptr);
     out.changed_caustic_points = changed_points(caustic.photons, composed);
-    out.maps.caustic = PhotonMap(std::move(composed.photons), caustic_split.total, caustic.photons,
-                                 std::move(composed.base_ids), std::move(composed.added_ids));
+    out.maps.caustic = PhotonMap(std::move(composed.photons), caustic_split.total, caustic.photons, composed.kept);
     out.caustic_retraced_paths = changed_count(caustic_changes) + caustic_split.count(PhotonGroup::moving);
     out.retraced_paths += out.caustic_retraced_paths;
     return out;
