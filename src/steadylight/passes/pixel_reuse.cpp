@@ -423,6 +423,81 @@ void mark_spheres_on_screen(const Camera& camera, const std::vector<BoundingSphe
     });
 }
 
+BoundingSphere pixel_points(const PixelTrace& trace) { return BoundingSphere::of_box(trace.lo, trace.hi); }
+
+float shadow_ray_slack(const BoundingSphere& points) {
+    // Shadow rays start a ray offset off their surface; a millionth of the scene's size is more.
+    return points.empty() ? 0 : 1e-5f * (1 + length(points.center) + points.radius);
+}
+
+namespace {
+
+/// Square tiles of pixels whose shadow rays cannot meet a dynamic object on their way to a
+/// light, told by one test a tile instead of one a pixel: most of a frame's tiles lie far from
+/// the hull of any object's shadow. A tile's test takes a sphere holding each of its pixels'
+/// points and their largest slack, and grows the object by a margin far beyond the tests'
+/// rounding (a ten-thousandth of the spheres' scale). A pixel's hull of segments to the light
+/// lies within the tile's, so its distance from the object is at least the tile's: a tile's
+/// "no" is then every pixel's computed "no", and the plan is the one tested pixel by pixel.
+class ShadowFreeTiles {
+public:
+    ShadowFreeTiles(const Camera& camera, const StaticFrame& base, const FrameChanges& changes)
+        : m_width(camera.width),
+          m_tiles_x((camera.width + size - 1) / size),
+          m_pairs(changes.dynamic.size() * changes.lights.size()) {
+        const int tiles_y = (camera.height + size - 1) / size;
+        m_free.assign(size_t(m_tiles_x) * size_t(tiles_y) * m_pairs, 0);
+        parallel_for_chunks(long(m_tiles_x) * tiles_y, 64, [&](long begin, long end) {
+            for (long tile = begin; tile < end; ++tile) {
+                const int x0 = int(tile % m_tiles_x) * size, y0 = int(tile / m_tiles_x) * size;
+                const int x1 = std::min(x0 + size, camera.width), y1 = std::min(y0 + size, camera.height);
+                const auto each_pixel = [&](auto&& f) {
+                    for (int y = y0; y < y1; ++y)
+                        for (int x = x0; x < x1; ++x) f(base.trace(size_t(y) * size_t(m_width) + size_t(x)));
+                };
+                Vec3 lo{infinity, infinity, infinity}, hi{-infinity, -infinity, -infinity};
+                each_pixel([&](const PixelTrace& trace) { lo = min(lo, trace.lo), hi = max(hi, trace.hi); });
+                BoundingSphere points = BoundingSphere::of_box(lo, hi);
+                float slack = 0;
+                if (!points.empty()) {
+                    // The sphere about the tile's box need not hold a pixel's sphere (a thin box
+                    // at its edge pokes out): its radius reaches the farthest pixel sphere's rim.
+                    points.radius = 0;
+                    each_pixel([&](const PixelTrace& trace) {
+                        const BoundingSphere pixel = pixel_points(trace);
+                        if (pixel.empty()) return;
+                        points.radius = std::max(points.radius, length(pixel.center - points.center) + pixel.radius);
+                        slack = std::max(slack, shadow_ray_slack(pixel));
+                    });
+                }
+                uint8_t* tile_free = m_free.data() + size_t(tile) * m_pairs;
+                for (const BoundingSphere& object : changes.dynamic)
+                    for (const BoundingSphere& light : changes.lights) {
+                        const float margin =
+                            1e-4f * (1 + length(object.center) + object.radius + length(points.center) + points.radius +
+                                     length(light.center) + light.radius);
+                        *tile_free++ = !may_meet_segments(object, points, light, slack + margin);
+                    }
+            }
+        });
+    }
+
+    /// Whether pixel `pixel` (row by row) lies in a tile whose shadow rays cannot meet object o
+    /// on their way to light l, for each (o, l) in turn (objects outer).
+    const uint8_t* free_pairs(size_t pixel) const {
+        const size_t x = pixel % size_t(m_width), y = pixel / size_t(m_width);
+        return m_free.data() + ((y / size) * size_t(m_tiles_x) + x / size) * m_pairs;
+    }
+
+private:
+    static constexpr int size = 8;
+    int m_width, m_tiles_x;
+    size_t m_pairs;
+    std::vector<uint8_t> m_free;  // per tile, per (object, light) pair
+};
+
+}  // namespace
+
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes) {
     const size_t pixels = base.pixel_count();
     PixelPlan plan;
@@ -433,19 +508,20 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
     const std::vector<std::vector<uint64_t>> changed_records = changes.changed_records.empty()
                                                                    ? std::vector<std::vector<uint64_t>>{}
                                                                    : base.marked_records(changes.changed_records);
+    const ShadowFreeTiles shadow_free(camera, base, changes);
     parallel_for_chunks(long(pixels), 4096, [&](long begin, long end) {
         for (long i = begin; i < end; ++i) {
             const PixelTrace& trace = base.trace(size_t(i));
-            const BoundingSphere points = BoundingSphere::of_box(trace.lo, trace.hi);
-            // Shadow rays start a ray offset off their surface; a millionth of the scene's size is more.
-            const float slack = points.empty() ? 0 : 1e-5f * (1 + length(points.center) + points.radius);
+            const BoundingSphere points = pixel_points(trace);
+            const float slack = shadow_ray_slack(points);
             const bool chains = trace.flags & PixelRecorder::chain;
             uint8_t changed = 0;
             if (seen[size_t(i)] || (trace.flags & PixelRecorder::open_chain)) changed |= camera_term;
+            const uint8_t* tile_free = shadow_free.free_pairs(size_t(i));
             for (const BoundingSphere& object : changes.dynamic) {
                 if (chains && may_meet_segments(object, points, points, slack)) changed |= camera_term;
                 for (const BoundingSphere& light : changes.lights)
-                    if (may_meet_segments(object, points, light, slack)) changed |= direct_term;
+                    if (!*tile_free++ && may_meet_segments(object, points, light, slack)) changed |= direct_term;
                 if (trace.reached_distant_light() &&
                     may_meet_rays(object, BoundingSphere{points.center, points.radius + slack}, trace.to_distant_lo,
                                   trace.to_distant_hi))

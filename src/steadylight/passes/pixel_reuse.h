@@ -286,6 +286,12 @@ struct PixelPlan {
 
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes);
 
+/// The surface points a pixel's camera rays met, as the tests of its shadow rays see them.
+BoundingSphere pixel_points(const PixelTrace& trace);
+/// How much wider than its `points` a pixel's shadow rays are tested: a pixel's shadow rays to
+/// a light may meet a dynamic object where may_meet_segments(object, points, light, slack).
+float shadow_ray_slack(const BoundingSphere& points);
+
 /// Whether sphere `s` may meet a ray from a point of sphere `from` along a unit direction in the
 /// box [lo, hi] of directions in 127ths (PixelTrace::to_distant_lo, hi): conservative, never a
 /// "no" for a ray that does.

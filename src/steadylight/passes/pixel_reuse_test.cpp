@@ -233,6 +233,45 @@ INSTANTIATE_TEST_SUITE_P(Scenes, PixelReuseOnScene,
                                            "blender_textured", "daylit_room"),
                          [](const auto& param_info) { return param_info.param; });
 
+// The shadow tests made a tile of pixels at a time (plan_pixels) answer as the test made pixel
+// by pixel: exactly the pixels whose shadow rays may meet the ball have their direct light
+// redone, in frames with the ball at either end of its path and between.
+TEST(PixelReuse, ShadowTestsByTilesAnswerAsPixelByPixel) {
+    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
+    scene.set_resolution(96, 72);
+    const PhotonMappingSettings settings = small_settings();
+    RayTracer tracer(scene, scene.evaluate(0));
+    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    const StaticFrame& base = *solution.static_frame;
+    const size_t pixels = base.pixel_count();
+    const Bsdfs bsdfs = make_bsdfs(scene);
+    for (const int frame : {0, scene.frame_count() / 3, scene.frame_count() - 1}) {
+        const PlacedFrame placed(scene, tracer, bsdfs, frame);
+        const FrameContext& context = placed.context();
+        const FrameChanges changes{context.tracer.dynamic_bounds(),
+                                   context.lights.bounds(),
+                                   std::vector<uint8_t>(pixels, 0),
+                                   false,
+                                   false,
+                                   std::vector<uint8_t>(pixels, 0),
+                                   {}};
+        const PixelPlan plan = plan_pixels(context.frame.camera, base, changes);
+        long shadowed = 0;
+        for (size_t i = 0; i < pixels; ++i) {
+            const BoundingSphere points = pixel_points(base.trace(i));
+            bool may_meet = false;
+            for (const BoundingSphere& object : changes.dynamic)
+                for (const BoundingSphere& light : changes.lights)
+                    may_meet = may_meet || may_meet_segments(object, points, light, shadow_ray_slack(points));
+            ASSERT_EQ((plan.changed[i] & direct_term) != 0, may_meet) << "frame " << frame << ", pixel " << i;
+            shadowed += may_meet;
+        }
+        // Neither none nor most: the ball's shadow is a part of the picture.
+        EXPECT_GT(shadowed, 0) << "frame " << frame;
+        EXPECT_LT(shadowed, long(pixels) / 2) << "frame " << frame;
+    }
+}
+
 // The packing alone: every sum, look-up, the records each look-up interpolated, and albedo
 // comes back bit for bit, in pixels of two tiles shaded side by side; a pixel whose camera rays
 // bring more distinct albedos than KeptLookUps::max_albedos (a fine texture at many camera rays)
