@@ -17,14 +17,16 @@ float relative_influence(const PhotonMap& dynamic, const LocalizedSettings& sett
     // Most of the image lies far from every dynamic photon: one nearest look-up tells.
     dynamic.k_nearest(p, 1, max_radius, neighbours);
     if (neighbours.empty()) return 0;
-    dynamic.k_nearest(p, settings.influence_photons, max_radius, neighbours);
+    // The sum needs a fixed order, not the nearest first: sorting the photons found took as
+    // long as finding them.
+    dynamic.k_nearest(p, settings.influence_photons, max_radius, neighbours, PointIndex::Order::farthest_first);
     float sum = 0;
     for (const Neighbour& nb : neighbours) {
         const Rgb& power = dynamic.photons()[nb.index].power;
         sum += std::max({std::abs(power.r), std::abs(power.g), std::abs(power.b)});
     }
     const float r2 =
-        int(neighbours.size()) < settings.influence_photons ? max_radius * max_radius : neighbours.back().distance2;
+        int(neighbours.size()) < settings.influence_photons ? max_radius * max_radius : neighbours.front().distance2;
     const float influence = sum / (pi * r2);
     // Scale-free: compare with the static indirect irradiance (or, where there is none, with
     // the influence itself, which then counts as large).

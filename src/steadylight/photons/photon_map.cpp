@@ -77,11 +77,11 @@ PhotonMap::PhotonMap(std::vector<Photon> photons, long emitted, const PhotonMap&
 
 size_t PhotonMap::indexed_here() const { return m_overlay ? m_overlay->added.size() : m_photons.size(); }
 
-void PhotonMap::k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out) const {
+void PhotonMap::k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out, PointIndex::Order order) const {
     if (!m_index) return out.clear();
-    if (!m_overlay) return m_index->k_nearest(p, k, max_radius * max_radius, out);
+    if (!m_overlay) return m_index->k_nearest(p, k, max_radius * max_radius, out, order);
     PointIndex::k_nearest({m_index.get(), m_overlay->base_ids.data()}, {&m_overlay->added, m_overlay->added_ids.data()},
-                          p, k, max_radius * max_radius, out);
+                          p, k, max_radius * max_radius, out, order);
 }
 
 bool PhotonMap::k_nearest_from_base(Vec3 p, int k, float max_radius, const PhotonMap& base,

@@ -55,7 +55,8 @@ public:
     long emitted() const { return m_emitted; }
 
     /// The k nearest photons to `p` within `max_radius`, nearest first.
-    void k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out) const;
+    void k_nearest(Vec3 p, int k, float max_radius, std::vector<Neighbour>& out,
+                   PointIndex::Order order = PointIndex::Order::nearest_first) const;
     /// k_nearest of a composed map from what its base knows: `base_nearest`, the ids of the
     /// `base_k` nearest photons of `base` to p within max_radius (nearest first; all of them
     /// there when fewer), and `base_to_here`, each base photon's id in this map or

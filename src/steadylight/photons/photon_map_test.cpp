@@ -73,6 +73,35 @@ TEST(PhotonMap, KNearestBreaksTiesByIndexLikeBruteForce) {
     }
 }
 
+// Asked for the farthest first (a sum's fixed order, not sorted), a search finds the same points
+// as nearest first, the farthest (ties: the larger index) first when all k were found, and in the
+// same order each time it is asked.
+TEST(PhotonMap, KNearestFarthestFirstFindsTheSamePoints) {
+    std::vector<Vec3> points = random_points(3000, 10);
+    for (int i = 0; i < 3000; i += 3) points[size_t(i)] = points[size_t(i / 2)];  // duplicates
+    const PointIndex index(points);
+    std::vector<Neighbour> sorted, unsorted, again;
+    int unsorted_answers = 0;
+    for (const int k : {1, 7, 300, 5000}) {
+        for (const Vec3& q : random_points(30, 11)) {
+            index.k_nearest(q, k, 0.09f, sorted);
+            index.k_nearest(q, k, 0.09f, unsorted, PointIndex::Order::farthest_first);
+            index.k_nearest(q, k, 0.09f, again, PointIndex::Order::farthest_first);
+            ASSERT_EQ(unsorted.size(), sorted.size()) << "k " << k;
+            for (size_t i = 0; i < unsorted.size(); ++i)
+                ASSERT_TRUE(unsorted[i].index == again[i].index && unsorted[i].distance2 == again[i].distance2);
+            if (int(sorted.size()) == k) {
+                EXPECT_EQ(unsorted.front().index, sorted.back().index) << "k " << k;
+                EXPECT_EQ(unsorted.front().distance2, sorted.back().distance2) << "k " << k;
+            }
+            unsorted_answers += !std::is_sorted(unsorted.begin(), unsorted.end(), nearer_neighbour);
+            std::sort(unsorted.begin(), unsorted.end(), nearer_neighbour);
+            for (size_t i = 0; i < unsorted.size(); ++i) ASSERT_EQ(unsorted[i].index, sorted[i].index) << "k " << k;
+        }
+    }
+    EXPECT_GT(unsorted_answers, 30);  // it spared the sort
+}
+
 // Told of a point it holds (the last look-up's answer, nearby), the nearest search answers as
 // without it: told of the answer itself, of a duplicate level with it (a smaller or larger index)
 // or of a farther point; points outside the radius are not told.

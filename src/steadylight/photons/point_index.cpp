@@ -215,7 +215,8 @@ std::optional<Neighbour> PointIndex::search_nearest(Vec3 p, float max_distance2,
 }
 
 template <class... Parts>
-void PointIndex::search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts) {
+void PointIndex::search_all(Vec3 p, int k, float max_distance2, Order order, std::vector<Neighbour>& out,
+                            Parts... parts) {
     out.clear();
     if (k <= 0) return;
     if (k == 1) {
@@ -227,7 +228,7 @@ void PointIndex::search_all(Vec3 p, int k, float max_distance2, std::vector<Neig
     out.resize(size_t(k));
     BoundedHeap heap(out.data(), k, max_distance2);
     (search_part(query, heap, parts), ...);
-    heap.sort();
+    if (order == Order::nearest_first) heap.sort();  // else the heap's order: the farthest on top
     out.resize(size_t(heap.size()));
 }
 
@@ -251,16 +252,18 @@ std::optional<Neighbour> PointIndex::nearest(Vec3 p, float max_distance2, std::o
     return search_nearest(p, max_distance2, known, std::pair{this, OwnIds{}});
 }
 
-void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const {
-    search_all(p, k, max_distance2, out, std::pair{this, OwnIds{}});
+void PointIndex::k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Order order) const {
+    search_all(p, k, max_distance2, order, out, std::pair{this, OwnIds{}});
 }
 
-void PointIndex::k_nearest(Mapped a, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) {
-    search_all(p, k, max_distance2, out, std::pair{a.index, MappedIds{a.ids}});
+void PointIndex::k_nearest(Mapped a, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Order order) {
+    search_all(p, k, max_distance2, order, out, std::pair{a.index, MappedIds{a.ids}});
 }
 
-void PointIndex::k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) {
-    search_all(p, k, max_distance2, out, std::pair{a.index, MappedIds{a.ids}}, std::pair{b.index, MappedIds{b.ids}});
+void PointIndex::k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out,
+                           Order order) {
+    search_all(p, k, max_distance2, order, out, std::pair{a.index, MappedIds{a.ids}},
+               std::pair{b.index, MappedIds{b.ids}});
 }
 
 }  // namespace steadylight

@@ -1,6 +1,6 @@
 // A kd-tree over points for k-nearest-neighbour queries within a radius (docs/design.md). Photon
-// maps and the irradiance photons use it; results are sorted by distance, ties broken by index,
-// so queries are deterministic.
+// maps and the irradiance photons use it; results are sorted by distance, ties broken by index
+// (or, for sums that need no sort, in the search's own order), so queries are deterministic.
 //
 // It is our own rather than nanoflann's: a balanced tree in an implicit layout (every range
 // splits at its median, no pointers) searched with a bounded max-heap that starts at the
@@ -52,9 +52,15 @@ public:
     /// `by_id[i]` for each point i, in the order the tree keeps the points (Mapped's ids).
     std::vector<uint32_t> in_tree_order(const std::vector<uint32_t>& by_id) const;
 
-    /// The up to `k` nearest points within sqrt(max_distance2) of `p`, nearest first (ties:
-    /// smaller index first).
-    void k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out) const;
+    /// How a search's answer is ordered: nearest first (ties: smaller index first); or, for a
+    /// sum over the points that needs a fixed order but not a sorted one, the farthest first
+    /// when all k were found and the rest in an order that depends on the index and the query
+    /// alone (the search's; with fewer than k, that order throughout).
+    enum class Order { nearest_first, farthest_first };
+
+    /// The up to `k` nearest points within sqrt(max_distance2) of `p`.
+    void k_nearest(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out,
+                   Order order = Order::nearest_first) const;
 
     /// k_nearest(p, 1, max_distance2), told of a point of the index within that distance already
     /// (`known`: its id and squared distance to p): the search prunes by it from the start, as a
@@ -63,9 +69,11 @@ public:
 
     /// k_nearest over the union of two mapped indexes (their ids distinct): the same answer as
     /// one index built over the union with those ids, since both order by distance, then id.
-    static void k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out);
+    static void k_nearest(Mapped a, Mapped b, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out,
+                          Order order = Order::nearest_first);
     /// k_nearest over one mapped index.
-    static void k_nearest(Mapped a, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out);
+    static void k_nearest(Mapped a, Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out,
+                          Order order = Order::nearest_first);
 
     /// The squared distance every search measures, the same bits wherever it is computed.
     static float distance2(Vec3 a, Vec3 p) {
@@ -102,7 +110,8 @@ private:
     /// keeps only the nearest, pruning from `known` on; search_within collects every point
     /// within the radius instead.
     template <class... Parts>
-    static void search_all(Vec3 p, int k, float max_distance2, std::vector<Neighbour>& out, Parts... parts);
+    static void search_all(Vec3 p, int k, float max_distance2, Order order, std::vector<Neighbour>& out,
+                           Parts... parts);
     template <class... Parts>
     static std::optional<Neighbour> search_nearest(Vec3 p, float max_distance2, std::optional<Neighbour> known,
                                                    Parts... parts);
