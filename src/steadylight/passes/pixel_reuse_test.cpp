@@ -18,6 +18,13 @@ namespace {
 
 const std::string source_dir = STEADYLIGHT_SOURCE_DIR;
 
+/// A scene file of scenes/ at the test's size.
+SceneDesc scene_file(const std::string& name, int width, int height) {
+    SceneDesc desc = load_scene_desc(source_dir + "/scenes/" + name + ".json");
+    desc.camera.width = width, desc.camera.height = height;
+    return desc;
+}
+
 /// The test's own oracle: the distance from p to the segment [a, b].
 float distance_to_segment(Vec3 p, Vec3 a, Vec3 b) {
     const Vec3 ab = b - a;
@@ -85,8 +92,7 @@ TEST(PixelReuse, RaysTowardsLightsFromFarAwayThroughASphereAreNeverMissed) {
 }
 
 TEST(PixelReuse, ScreenMarksHoldEveryPixelWhoseRaysPassThroughTheSphere) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
-    scene.set_resolution(64, 48);
+    const Scene scene(scene_file("ball", 64, 48));
     const Camera camera = scene.evaluate(0).camera;
     const Vec3 eye = camera.generate_ray(0, 0).o;
     Pcg32 rng(3);
@@ -117,8 +123,7 @@ TEST(PixelReuse, ScreenMarksHoldEveryPixelWhoseRaysPassThroughTheSphere) {
 }
 
 TEST(PixelReuse, SpheresMarkedTogetherAreThoseMarkedOneByOne) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
-    scene.set_resolution(97, 61);  // bands of rows that do not divide the height
+    const Scene scene(scene_file("ball", 97, 61));  // bands of rows that do not divide the height
     const Camera camera = scene.evaluate(0).camera;
     Pcg32 rng(5);
     std::vector<BoundingSphere> spheres{{}};  // an empty one too
@@ -166,6 +171,37 @@ StaticSolution solution_with_static_frame(const Scene& scene, RayTracer& tracer,
     return solution;
 }
 
+/// A scene with its tracer and its segment's static solution, the static frame made at frame 0:
+/// what the frame tests below start from.
+struct SolvedScene {
+    Scene scene;
+    PhotonMappingSettings settings;
+    RayTracer tracer;
+    StaticSolution solution;
+    Bsdfs bsdfs;
+
+    explicit SolvedScene(SceneDesc desc, PhotonMappingSettings s = small_settings())
+        : scene(std::move(desc)),
+          settings(s),
+          tracer(scene, scene.evaluate(0)),
+          solution(solution_with_static_frame(scene, tracer, settings, 0)),
+          bsdfs(make_bsdfs(scene)) {}
+
+    /// Frame `frame` as the localized method renders it, reusing the static frame.
+    LocalizedFrame render(int frame) {
+        const PlacedFrame placed(scene, tracer, bsdfs, frame);
+        return run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+    }
+
+    /// The same frame shaded whole: without the static frame, which is then put back.
+    LocalizedFrame render_whole(int frame) {
+        std::shared_ptr<const StaticFrame> kept = std::move(solution.static_frame);
+        LocalizedFrame whole = render(frame);
+        solution.static_frame = std::move(kept);
+        return whole;
+    }
+};
+
 /// Every layer of two frames, bit for bit, but the one that marks the pixels redone.
 void expect_same_layers(const LocalizedFrame& a, const LocalizedFrame& b, const std::string& what) {
     const std::pair<const char*, Image LocalizedFrame::*> layers[] = {
@@ -198,20 +234,9 @@ void expect_same_layers(const LocalizedFrame& a, const LocalizedFrame& b, const 
 class PixelReuseOnScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/" + GetParam() + ".json"));
-    scene.set_resolution(48, 36);
-    const PhotonMappingSettings settings = small_settings();
-    RayTracer tracer(scene, scene.evaluate(0));
-    StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
-    const Bsdfs bsdfs = make_bsdfs(scene);
-    for (const int frame : {scene.frame_count() / 2, 1}) {
-        const PlacedFrame placed(scene, tracer, bsdfs, frame);
-        const LocalizedFrame reused =
-            run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
-        std::shared_ptr<const StaticFrame> kept = std::move(solution.static_frame);
-        const LocalizedFrame whole =
-            run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
-        solution.static_frame = std::move(kept);
+    SolvedScene solved(scene_file(GetParam(), 48, 36));
+    for (const int frame : {solved.scene.frame_count() / 2, 1}) {
+        const LocalizedFrame reused = solved.render(frame), whole = solved.render_whole(frame);
         const std::string what = GetParam() + " frame " + std::to_string(frame);
         expect_same_layers(reused, whole, what);
         // Reuse did something: some pixels kept their shadow rays' light or more.
@@ -237,16 +262,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, PixelReuseOnScene,
 // by pixel: exactly the pixels whose shadow rays may meet the ball have their direct light
 // redone, in frames with the ball at either end of its path and between.
 TEST(PixelReuse, ShadowTestsByTilesAnswerAsPixelByPixel) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
-    scene.set_resolution(96, 72);
-    const PhotonMappingSettings settings = small_settings();
-    RayTracer tracer(scene, scene.evaluate(0));
-    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
-    const StaticFrame& base = *solution.static_frame;
+    SolvedScene ball(scene_file("ball", 96, 72));
+    const StaticFrame& base = *ball.solution.static_frame;
     const size_t pixels = base.pixel_count();
-    const Bsdfs bsdfs = make_bsdfs(scene);
-    for (const int frame : {0, scene.frame_count() / 3, scene.frame_count() - 1}) {
-        const PlacedFrame placed(scene, tracer, bsdfs, frame);
+    const int frames = ball.scene.frame_count();
+    for (const int frame : {0, frames / 3, frames - 1}) {
+        const PlacedFrame placed(ball.scene, ball.tracer, ball.bsdfs, frame);
         const FrameContext& context = placed.context();
         const FrameChanges changes{context.tracer.dynamic_bounds(),
                                    context.lights.bounds(),
@@ -416,65 +437,42 @@ TEST(TileRecordSets, GivesBackEverySetAndWhatItMeetsPastSixtyFourRecords) {
 // KeptLookUps::max_albedos, pixels on blender_textured's textures are shaded again when their
 // records change, still the frame shaded whole, bit for bit.
 TEST(PixelReuse, PixelsWithMoreAlbedosThanKeptAreShadedAgain) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/blender_textured.json"));
-    scene.set_resolution(16, 12);
     PhotonMappingSettings settings = small_settings();
     settings.shading.samples_per_pixel = KeptLookUps::max_albedos + 8;
-    RayTracer tracer(scene, scene.evaluate(0));
-    StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
-    const Bsdfs bsdfs = make_bsdfs(scene);
-    const PlacedFrame placed(scene, tracer, bsdfs, scene.frame_count() / 2);
-    const LocalizedFrame reused = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
-    solution.static_frame.reset();
-    const LocalizedFrame whole = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
-    expect_same_layers(reused, whole, "blender_textured");
+    SolvedScene textured(scene_file("blender_textured", 16, 12), settings);
+    const int frame = textured.scene.frame_count() / 2;
+    expect_same_layers(textured.render(frame), textured.render_whole(frame), "blender_textured");
 }
 
 // What a still camera keeps between frames, packed: a diffuse room's pixel at the default 16
 // camera rays in at most 150 bytes (its trace, three sums, a look-up, an albedo and a byte per
 // camera ray), against 440 when every sum and a look-up slot per camera ray were kept whole.
 TEST(PixelReuse, StaticFrameKeepsADiffuseRoomsPixelInAtMost150Bytes) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
-    scene.set_resolution(32, 24);
     PhotonMappingSettings settings = small_settings();
     settings.shading.samples_per_pixel = 16;
-    RayTracer tracer(scene, scene.evaluate(0));
-    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
-    EXPECT_LE(double(solution.static_frame->bytes()) / (32 * 24), 150);
+    const SolvedScene ball(scene_file("ball", 32, 24), settings);
+    EXPECT_LE(double(ball.solution.static_frame->bytes()) / (32 * 24), 150);
 }
 
 // Where the static frame would take more than its share of the memory available, frames shade
 // every pixel: it is refused up front when the part every pixel takes would not fit, and
 // dropped when it grows past its share while it is made.
 TEST(PixelReuse, AStaticFrameThatWouldNotFitIsNotKept) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/ball.json"));
-    scene.set_resolution(32, 24);
-    const PhotonMappingSettings settings = small_settings();
-    RayTracer tracer(scene, scene.evaluate(0));
-    const Segment segment{0, scene.frame_count() - 1};
-    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
+    SolvedScene ball(scene_file("ball", 32, 24));
+    const Segment segment{0, ball.scene.frame_count() - 1};
     const auto kept_with = [&](double share_bytes) {
-        return segment_static_frame(scene, tracer, segment, solution, settings, {},
+        return segment_static_frame(ball.scene, ball.tracer, segment, ball.solution, ball.settings, {},
                                     share_bytes / static_frame_memory_share) != nullptr;
     };
-    const double bytes = double(solution.static_frame->bytes());
+    const double bytes = double(ball.solution.static_frame->bytes());
     EXPECT_TRUE(kept_with(bytes * 1.1));
     EXPECT_FALSE(kept_with(bytes * 0.9));
     EXPECT_FALSE(kept_with(32 * 24 * double(StaticFrame::fixed_bytes_per_pixel()) * 0.9));
 }
 
 TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {
-    const Scene scene(testing::two_rooms_one_moving_ball());
-    const PhotonMappingSettings settings = small_settings();
-    RayTracer tracer(scene, scene.evaluate(0));
-    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
-    const Bsdfs bsdfs = make_bsdfs(scene);
-    std::vector<LocalizedFrame> frames;
-    for (const int frame : {0, 1}) {
-        const PlacedFrame placed(scene, tracer, bsdfs, frame);
-        frames.push_back(run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected));
-    }
-    const LocalizedFrame &a = frames[0], &b = frames[1];
+    SolvedScene rooms(testing::two_rooms_one_moving_ball());
+    const LocalizedFrame a = rooms.render(0), b = rooms.render(1);
     int clear = 0, clear_in_b = 0;
     for (int y = 0; y < a.beauty.height; ++y)
         for (int x = 0; x < a.beauty.width; ++x) {
@@ -497,20 +495,13 @@ TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {
 TEST(PixelReuse, TransparentBackgroundKeepsAlphaWithThePixels) {
     for (SceneDesc desc : {testing::balls_before_the_world(), testing::two_rooms_one_moving_ball()}) {
         desc.camera.transparent_background = true;
-        const Scene scene(std::move(desc));
-        const PhotonMappingSettings settings = small_settings();
-        RayTracer tracer(scene, scene.evaluate(0));
-        StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
-        const Bsdfs bsdfs = make_bsdfs(scene);
+        SolvedScene solved(std::move(desc));
+        const Scene& scene = solved.scene;
         std::vector<LocalizedFrame> frames;
         for (const int frame : {0, 1}) {
-            const PlacedFrame placed(scene, tracer, bsdfs, frame);
-            frames.push_back(run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected));
-            std::shared_ptr<const StaticFrame> kept = std::move(solution.static_frame);
-            const LocalizedFrame whole =
-                run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
-            solution.static_frame = std::move(kept);
-            expect_same_layers(frames.back(), whole, scene.name() + " frame " + std::to_string(frame));
+            frames.push_back(solved.render(frame));
+            expect_same_layers(frames.back(), solved.render_whole(frame),
+                               scene.name() + " frame " + std::to_string(frame));
         }
         const LocalizedFrame &a = frames[0], &b = frames[1];
         ASSERT_TRUE(a.alpha && b.alpha);
@@ -533,14 +524,8 @@ TEST(PixelReuse, TransparentBackgroundKeepsAlphaWithThePixels) {
 }
 
 TEST(PixelReuse, AnotherViewShadesEveryPixel) {
-    Scene scene(load_scene_desc(source_dir + "/scenes/flythrough.json"));
-    scene.set_resolution(32, 24);
-    const PhotonMappingSettings settings = small_settings();
-    RayTracer tracer(scene, scene.evaluate(0));
-    const StaticSolution solution = solution_with_static_frame(scene, tracer, settings, 0);
-    const Bsdfs bsdfs = make_bsdfs(scene);
-    const PlacedFrame placed(scene, tracer, bsdfs, scene.frame_count() / 2);
-    const LocalizedFrame frame = run_frame_pass(placed.context(), solution, settings, {}, StaticCacheUse::corrected);
+    SolvedScene flythrough(scene_file("flythrough", 32, 24));
+    const LocalizedFrame frame = flythrough.render(flythrough.scene.frame_count() / 2);
     const FrameStats& s = frame.stats;
     EXPECT_EQ(s.pixels_reused + s.pixels_looked_up_again + s.pixels_redone_but_direct + s.pixels_redone, 0);
     EXPECT_EQ(frame.changed.at(5, 5).r, 15.0f);  // every term computed
