@@ -6,10 +6,12 @@
 
 #include <cmath>
 
+#include "steadylight/base/ray.h"
 #include "steadylight/base/rng.h"
 #include "steadylight/base/sampling.h"
 #include "steadylight/scene/shapes.h"
 #include "steadylight/shading/light.h"
+#include "steadylight/trace/ray_tracer.h"
 
 namespace steadylight {
 namespace {
@@ -301,6 +303,52 @@ TEST(DistantLights, PhotonsThroughPortalsCarryTheLightThatEntersByThem) {
         const double expected = world ? pi * 2 : luminance({3, 2, 1}) * 2 * std::max(0.0f, -travel.x);
         EXPECT_NEAR(power / n, expected, (world ? 0.01 : 1e-4) * expected) << world;
     }
+}
+
+// Shadow rays start lifted off their surface (spawn_ray()), so from daylit_room's back wall one
+// can leave by the window where the line from the point meets the wall beside the window. Every
+// direction the tracer lets out by the window's rim is weighed with the portal's density, as
+// one through its middle: one weighed by the other strategies' density alone would count about a
+// hundred times too much and light its pixel as a bright speck.
+TEST(DistantLights, DirectionsOutByAPortalsRimAreWeighedAsThroughItsMiddle) {
+    SceneDesc desc = load_scene_desc(std::string(STEADYLIGHT_SOURCE_DIR) + "/scenes/daylit_room.json");
+    desc.suns.clear();  // the world alone
+    const Scene scene(desc);
+    const FrameState frame = scene.evaluate(0);
+    const RayTracer tracer(scene, frame);
+    const LightSet lights(scene, frame);
+    const PortalDesc& portal = scene.desc().portals.at(0);
+    ASSERT_LT(portal.inward_normal().x, -0.99f);  // the window in the wall x = 5.5
+    // The light's density for w at ref, from the power heuristic's weight against a density of 1.
+    const auto light_pdf = [&](Vec3 ref, Vec3 w, Vec3 n) {
+        return std::sqrt(luminance(lights.escaped_radiance(w)) / luminance(lights.escaped_radiance(ref, w, n, 1)) - 1);
+    };
+    const Vec3 n{0, 0, -1};  // the back wall's, at z = 5.5
+    Pcg32 rng(4);
+    int out = 0, out_where_the_line_meets_the_wall = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Vec3 p{0.5f + 4.5f * rng.next_float(), 0.3f + 4.9f * rng.next_float(), 5.5f};
+        // Aimed from the lifted start at a point of the window's rim, give or take 2 mm.
+        const float a = rng.next_float(), hair = (rng.next_float() - 0.5f) * 4e-3f;
+        const int edge = int(rng.next_u32() % 4);
+        const Vec3 along = edge < 2 ? portal.edge_u : portal.edge_v, across = edge < 2 ? portal.edge_v : portal.edge_u;
+        const Vec3 rim =
+            portal.corner + along * a + across * float(edge % 2) + normalize(across) * (edge % 2 ? hair : -hair);
+        const Ray shadow = spawn_ray(p, n, normalize(rim - spawn_ray(p, n, n).o));
+        if (tracer.occluded(shadow)) continue;
+        ++out;
+        const Vec3 through_line = p + shadow.d * ((5.5f - p.x) / shadow.d.x);
+        const Vec3 q = through_line - portal.corner;
+        const float s = dot(q, portal.edge_u) / length2(portal.edge_u),
+                    t = dot(q, portal.edge_v) / length2(portal.edge_v);
+        out_where_the_line_meets_the_wall += s < 0 || s > 1 || t < 0 || t > 1;
+        const Vec3 middle = normalize(portal.corner + (portal.edge_u + portal.edge_v) * 0.5f - p);
+        ASSERT_GT(light_pdf(p, shadow.d, n), 0.5f * light_pdf(p, middle, n))
+            << "from " << p.x << " " << p.y << " " << p.z << " out at " << s << " " << t;
+    }
+    // The test meets the case: rays out by the window whose line from the point meets the wall.
+    EXPECT_GT(out, 1000);
+    EXPECT_GT(out_where_the_line_meets_the_wall, 50);
 }
 
 TEST(DistantLights, SampledDirectionsAreWeighedAsEscapedRaysAre) {
