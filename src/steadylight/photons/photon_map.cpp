@@ -222,9 +222,24 @@ IrradiancePhotons::IrradiancePhotons(const PhotonMap& global, int stride, const 
         m_wider.resize(m_photon.size());
         m_wider_state = std::make_unique<std::atomic<uint8_t>[]>(m_photon.size());
     }
-    std::vector<Vec3> positions(m_photon.size());
-    for (size_t i = 0; i < m_photon.size(); ++i) positions[i] = photons[m_photon[i]].p;
-    m_index = PointIndex(positions);
+    if (!from) {
+        std::vector<Vec3> positions(m_photon.size());
+        for (size_t i = 0; i < m_photon.size(); ++i) positions[i] = photons[m_photon[i]].p;
+        m_index = PointIndex(positions);
+        return;
+    }
+    // The static values' index with the values the frame lost taken out and its new ones filed
+    // in: the same answers as an index built over this frame's values, without building one.
+    std::vector<uint32_t> ids_by_static(from->size(), PointIndex::removed), added_ids;
+    std::vector<Vec3> added;
+    for (uint32_t i = 0; i < m_photon.size(); ++i)
+        if (m_static_carrier[i] != PointIndex::removed) {
+            ids_by_static[m_static_carrier[i]] = i;
+        } else {
+            added.push_back(photons[m_photon[i]].p);
+            added_ids.push_back(i);
+        }
+    m_index = from->m_index.updated(ids_by_static, added, added_ids);
 }
 
 std::optional<IrradiancePhotons::Value> IrradiancePhotons::reused_value(uint32_t i, bool& carried) const {

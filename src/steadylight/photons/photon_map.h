@@ -172,7 +172,8 @@ KeptStaticPhotons kept_static_photons_by_bits(const PhotonMap& frame_map, const 
 /// carried or estimated again as `reuse` says (ChangedValues). An estimate made again finds its
 /// k nearest photons from the static photon's list of a few more (wider_nearest, kept once
 /// found) and the frame's added photons, without searching the whole map, whenever the removed
-/// ones leave that list long enough to tell: the same neighbours, the same value. Thread-safe;
+/// ones leave that list long enough to tell: the same neighbours, the same value. With `reuse`
+/// the values' index is the static values' updated (PointIndex::updated), not built. Thread-safe;
 /// values do not depend on which thread computes them first. The map must outlive this object
 /// and stay where it is, and so must what `coverage` and `reuse` refer to while values are
 /// computed.

@@ -13,6 +13,13 @@ namespace {
 
 // Ranges this small are leaves, scanned point by point.
 constexpr uint32_t leaf_size = 16;
+// updated() builds a range this small again, as a tree of its own, where a quarter or more of
+// its points changed: an object that was not there before brings its points all into the one
+// leaf whose empty cell it fills (about a thousand on BALL's ball), and where it takes points
+// away, the leaves left thin make searches visit more of them.
+constexpr uint32_t rebuilt_size = 1024;
+// m_axis's mark of a range built again.
+constexpr uint8_t rebuilt_range = 3;
 // Ranges this large build their two halves in parallel (the result does not depend on it).
 constexpr uint32_t parallel_build_size = 32 * 1024;
 
@@ -102,9 +109,9 @@ private:
     float m_radius2;
 };
 
-/// The ids of an index searched on its own: its points' own.
+/// The ids of an index searched on its own: its points' own (`removed` for those an update took out).
 struct OwnIds {
-    static bool keeps(uint32_t) { return true; }
+    static bool keeps(uint32_t id) { return id != PointIndex::removed; }
     uint32_t operator()(uint32_t, uint32_t id) const { return id; }
 };
 
@@ -159,13 +166,80 @@ void PointIndex::build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper) {
     }
 }
 
+uint32_t PointIndex::leaf_of(Vec3 p) const {
+    uint32_t begin = 0, end = uint32_t(m_entries.size());
+    while (end - begin > leaf_size) {  // as search() descends
+        const uint32_t mid = begin + (end - begin) / 2;
+        const int axis = m_axis[mid];
+        if (p[axis] - m_split[mid] < 0)
+            end = mid;
+        else
+            begin = mid;
+    }
+    return begin;
+}
+
+PointIndex PointIndex::updated(const std::vector<uint32_t>& ids_by_id, const std::vector<Vec3>& added,
+                               const std::vector<uint32_t>& added_ids) const {
+    SL_CHECK(ids_by_id.size() == m_entries.size() && added.size() == added_ids.size() && m_added_first.empty());
+    if (m_entries.empty()) {
+        PointIndex fresh(added);
+        for (Entry& e : fresh.m_entries) e.id = added_ids[e.id];
+        return fresh;
+    }
+    PointIndex out;
+    out.m_entries = m_entries;
+    for (Entry& e : out.m_entries) e.id = ids_by_id[e.id];
+    out.m_axis = m_axis;
+    out.m_split = m_split;
+    // The added points, sorted by their leaf's first position (a counting sort).
+    std::vector<uint32_t> leaf(added.size());
+    out.m_added_first.assign(m_entries.size() + 1, 0);
+    for (size_t i = 0; i < added.size(); ++i) ++out.m_added_first[(leaf[i] = leaf_of(added[i])) + 1];
+    for (size_t i = 1; i < out.m_added_first.size(); ++i) out.m_added_first[i] += out.m_added_first[i - 1];
+    std::vector<uint32_t> next(out.m_added_first.begin(), out.m_added_first.end() - 1);
+    out.m_added.resize(added.size());
+    for (size_t i = 0; i < added.size(); ++i)
+        out.m_added[next[leaf[i]]++] = {{added[i].x, added[i].y, added[i].z}, added_ids[i]};
+    // The ranges much changed, built again (those of their added points stay in m_added, where
+    // no search reaches them).
+    std::vector<uint32_t> removed_before(m_entries.size() + 1, 0);
+    for (size_t i = 0; i < m_entries.size(); ++i)
+        removed_before[i + 1] = removed_before[i] + (out.m_entries[i].id == removed ? 1 : 0);
+    out.rebuild_changed(0, uint32_t(m_entries.size()), removed_before);
+    return out;
+}
+
+void PointIndex::rebuild_changed(uint32_t begin, uint32_t end, const std::vector<uint32_t>& removed_before) {
+    const uint32_t size = end - begin;
+    if (size <= leaf_size) return;
+    const uint32_t mid = begin + size / 2;
+    const uint32_t changed = removed_before[end] - removed_before[begin] + m_added_first[end] - m_added_first[begin];
+    if (size > rebuilt_size || 4 * changed < size) {
+        rebuild_changed(begin, mid, removed_before);
+        rebuild_changed(mid, end, removed_before);
+        return;
+    }
+    std::vector<Vec3> points;
+    std::vector<uint32_t> ids;
+    const auto take = [&](const Entry& e) {
+        if (e.id == removed) return;
+        points.push_back({e.p[0], e.p[1], e.p[2]});
+        ids.push_back(e.id);
+    };
+    std::for_each(m_entries.begin() + begin, m_entries.begin() + end, take);
+    std::for_each(m_added.begin() + m_added_first[begin], m_added.begin() + m_added_first[end], take);
+    PointIndex tree(points);
+    for (Entry& e : tree.m_entries) e.id = ids[e.id];
+    m_axis[mid] = rebuilt_range;
+    m_rebuilt_mids.push_back(mid);  // ranges are met left to right: ascending
+    m_rebuilt.push_back(std::move(tree));
+}
+
 template <class Heap, class Ids>
 void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap, Ids ids) const {
-    const auto offer = [&](uint32_t position) {
-        const Entry& e = m_entries[position];
-        const uint32_t id = ids(position, e.id);
-        if (!Ids::keeps(id)) return;
-        heap.offer(id, distance2({e.p[0], e.p[1], e.p[2]}, {p[0], p[1], p[2]}));
+    const auto offer = [&](const Entry& e, uint32_t id) {
+        if (Ids::keeps(id)) heap.offer(id, distance2({e.p[0], e.p[1], e.p[2]}, {p[0], p[1], p[2]}));
     };
     // Descend towards p; visit the far half of a split afterwards if the heap's radius still
     // reaches the far half's cell. The distance to a cell is kept per axis and updated as the
@@ -174,6 +248,13 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
     while (end - begin > leaf_size) {
         const uint32_t mid = begin + (end - begin) / 2;
         const int axis = m_axis[mid];
+        if (axis == rebuilt_range) {
+            const PointIndex& tree = m_rebuilt[size_t(
+                std::lower_bound(m_rebuilt_mids.begin(), m_rebuilt_mids.end(), mid) - m_rebuilt_mids.begin())];
+            // Its points lie in this range's cell: searched from the cell's distance on.
+            if (!tree.m_entries.empty()) tree.search(0, uint32_t(tree.m_entries.size()), p, cell, heap, OwnIds{});
+            return;
+        }
         const float d = p[axis] - m_split[mid];
         if (d < 0) {
             search(begin, mid, p, cell, heap, ids);
@@ -187,11 +268,13 @@ void PointIndex::search(uint32_t begin, uint32_t end, const float p[3], CellDist
         cell.offset[axis] = d;
         if (cell.distance2 > heap.radius2()) return;
     }
-    for (uint32_t i = begin; i < end; ++i) offer(i);
+    for (uint32_t i = begin; i < end; ++i) offer(m_entries[i], ids(i, m_entries[i].id));
+    if (m_added_first.empty()) return;
+    for (uint32_t i = m_added_first[begin]; i < m_added_first[end]; ++i) offer(m_added[i], m_added[i].id);
 }
 
 std::vector<uint32_t> PointIndex::in_tree_order(const std::vector<uint32_t>& by_id) const {
-    SL_CHECK(by_id.size() == m_entries.size());
+    SL_CHECK(by_id.size() == m_entries.size() && m_added_first.empty());  // an updated index is not Mapped
     std::vector<uint32_t> ids(m_entries.size());
     for (size_t i = 0; i < m_entries.size(); ++i) ids[i] = by_id[m_entries[i].id];
     return ids;

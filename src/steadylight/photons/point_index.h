@@ -48,9 +48,21 @@ public:
     PointIndex() = default;
     explicit PointIndex(const std::vector<Vec3>& points);
 
-    size_t size() const { return m_entries.size(); }
+    /// The points held: the tree's (those `removed` by updated() too) and those added.
+    size_t size() const { return m_entries.size() + m_added.size(); }
     /// `by_id[i]` for each point i, in the order the tree keeps the points (Mapped's ids).
     std::vector<uint32_t> in_tree_order(const std::vector<uint32_t>& by_id) const;
+
+    /// This index after its set of points has changed a little: point i answers as
+    /// `ids_by_id[i]` (or not at all: `removed`), and the `added` points join it answering as
+    /// `added_ids`, each filed with the leaf whose cell holds it; a small range where a quarter
+    /// or more of the points changed is built again as a tree of its own. Its searches give the
+    /// answers of an index built over the new set with those ids (both order by distance, then
+    /// id), and making it costs a pass over the points, a descent per added one and the ranges
+    /// built again, instead of a whole build: for a set that changes by a few percent at a
+    /// time. It is searched on its own (not as a Mapped part), and it is not updated again.
+    PointIndex updated(const std::vector<uint32_t>& ids_by_id, const std::vector<Vec3>& added,
+                       const std::vector<uint32_t>& added_ids) const;
 
     /// How a search's answer is ordered: nearest first (ties: smaller index first); or, for a
     /// sum over the points that needs a fixed order but not a sorted one, the farthest first
@@ -101,6 +113,11 @@ private:
     };
 
     void build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper);
+    /// Where the leaf whose cell holds p begins.
+    uint32_t leaf_of(Vec3 p) const;
+    /// Builds again, as trees of their own, the ranges within [begin, end) that updated()
+    /// changed much (`removed_before[i]`: the points removed before position i).
+    void rebuild_changed(uint32_t begin, uint32_t end, const std::vector<uint32_t>& removed_before);
     template <class Heap, class Ids>
     void search(uint32_t begin, uint32_t end, const float p[3], CellDistance cell, Heap& heap, Ids ids) const;
     /// Searches one part (index and ids) into `heap`.
@@ -123,6 +140,14 @@ private:
     // (coordinates <= the split value) and [mid, end) (>=); its axis and value are kept at mid.
     std::vector<uint8_t> m_axis;
     std::vector<float> m_split;
+    // Points added by updated(), grouped by leaf: those of the leaf [begin, end) are
+    // m_added[m_added_first[begin] .. m_added_first[end]) (m_added_first: one per position and
+    // one more; empty when none were).
+    std::vector<Entry> m_added;
+    std::vector<uint32_t> m_added_first;
+    // Ranges updated() built again (marked in m_axis): their mids, ascending, and their trees.
+    std::vector<uint32_t> m_rebuilt_mids;
+    std::vector<PointIndex> m_rebuilt;
 };
 
 }  // namespace steadylight
