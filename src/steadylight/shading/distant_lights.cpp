@@ -54,6 +54,7 @@ public:
             m_rectangles.push_back({portal.corner, portal.edge_u, portal.edge_v});
             m_normals.push_back(portal.inward_normal());
             m_areas.push_back(portal.area());
+            m_edge_lengths.push_back({length(portal.edge_u), length(portal.edge_v)});
             m_total_area += portal.area();
         }
     }
@@ -150,13 +151,15 @@ private:
         if (!(along < 0)) return false;  // from inside, a way out goes against the inward normal
         const Vec3 q = ref + w * (dot(r.corner - ref, m_normals[i]) / along) - r.corner;
         const float rim = 2 * ray_epsilon(ref) * (1 + 1 / std::max(-along, 0.1f));
-        const float u = dot(q, r.edge_u) / length(r.edge_u), v = dot(q, r.edge_v) / length(r.edge_v);
-        return u >= -rim && u <= length(r.edge_u) + rim && v >= -rim && v <= length(r.edge_v) + rim;
+        const Vec2 edges = m_edge_lengths[i];
+        const float u = dot(q, r.edge_u) / edges.x, v = dot(q, r.edge_v) / edges.y;
+        return u >= -rim && u <= edges.x + rim && v >= -rim && v <= edges.y + rim;
     }
 
     std::vector<Rectangle> m_rectangles;
     std::vector<Vec3> m_normals;
     std::vector<float> m_areas;
+    std::vector<Vec2> m_edge_lengths;  // |edge_u|, |edge_v|
     float m_total_area = 0;
 };
 

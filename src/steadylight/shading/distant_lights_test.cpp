@@ -1,7 +1,8 @@
 // Lights from far away: a sun gives its irradiance to a surface facing it, whether exactly
 // parallel or spread over a cone, and a ray into its cone sees radiance that integrates to that
 // irradiance; the world gives ∫ L cos dω (π L when uniform) whatever its sampling; pdfs agree with samples;
-// photons carry the light that crosses the disc covering the scene and start outside it.
+// photons carry the light that crosses the disc covering the scene and start outside it; a
+// shadow ray that leaves by a portal's rim (lifted off its wall) is weighed as through the portal.
 #include <gtest/gtest.h>
 
 #include <cmath>
