@@ -102,9 +102,11 @@ TEST(PointIndex, UpdatedAnswersAsAnIndexOverTheNewSet) {
     Pcg32 rng(8);
     std::vector<Vec3> queries;
     for (int i = 0; i < 300; ++i) queries.push_back(grid_or_random_point(rng));
-    for (int i = 0; i < 100; ++i) queries.push_back({rng.next_float() * 0.25f, rng.next_float() * 0.25f, rng.next_float() * 0.35f});
     for (int i = 0; i < 100; ++i)
-        queries.push_back(Vec3{0.5f, 0.5f, 0.5f} + Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f} * 0.3f);
+        queries.push_back({rng.next_float() * 0.25f, rng.next_float() * 0.25f, rng.next_float() * 0.35f});
+    for (int i = 0; i < 100; ++i)
+        queries.push_back(Vec3{0.5f, 0.5f, 0.5f} +
+                          Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f} * 0.3f);
     std::vector<Neighbour> found;
     std::optional<Vec3> last;  // the previous query's nearest point, told to the next search
     for (const Vec3& q : queries) {
@@ -115,12 +117,15 @@ TEST(PointIndex, UpdatedAnswersAsAnIndexOverTheNewSet) {
         const std::vector<Neighbour> nearest = brute_force(after, q, 1, 0.04f);
         std::optional<Neighbour> known;
         if (last && PointIndex::distance2(*last, q) <= 0.04f) {
-            const auto at_last = std::find_if(after.begin(), after.end(), [&](const auto& p) { return p.first == *last; });
+            const auto at_last =
+                std::find_if(after.begin(), after.end(), [&](const auto& p) { return p.first == *last; });
             known = Neighbour{at_last->second, PointIndex::distance2(*last, q)};
         }
         const std::optional<Neighbour> one = updated.nearest(q, 0.04f, known);
         expect_same(one ? std::vector<Neighbour>{*one} : std::vector<Neighbour>{}, nearest, "nearest");
-        if (one) last = std::find_if(after.begin(), after.end(), [&](const auto& p) { return p.second == one->index; })->first;
+        if (one)
+            last =
+                std::find_if(after.begin(), after.end(), [&](const auto& p) { return p.second == one->index; })->first;
         updated.within(q, 0.01f, found);
         std::sort(found.begin(), found.end(), nearer_neighbour);
         expect_same(found, brute_force(after, q, int(after.size()), 0.01f), "within");
