@@ -143,6 +143,12 @@ PointIndex::PointIndex(const std::vector<Vec3>& points) {
     build(0, uint32_t(points.size()), lower, upper);
 }
 
+PointIndex PointIndex::answering_as(const std::vector<Vec3>& points, const std::vector<uint32_t>& ids) {
+    PointIndex index(points);  // split ties broken by position in `points`, as for any index
+    for (Entry& e : index.m_entries) e.id = ids[e.id];
+    return index;
+}
+
 void PointIndex::build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper) {
     if (end - begin <= leaf_size) return;
     // Split the range's box across its widest side at the median point.
@@ -182,11 +188,7 @@ uint32_t PointIndex::leaf_of(Vec3 p) const {
 PointIndex PointIndex::updated(const std::vector<uint32_t>& ids_by_id, const std::vector<Vec3>& added,
                                const std::vector<uint32_t>& added_ids) const {
     SL_CHECK(ids_by_id.size() == m_entries.size() && added.size() == added_ids.size() && m_added_first.empty());
-    if (m_entries.empty()) {
-        PointIndex fresh(added);
-        for (Entry& e : fresh.m_entries) e.id = added_ids[e.id];
-        return fresh;
-    }
+    if (m_entries.empty()) return answering_as(added, added_ids);
     PointIndex out;
     out.m_entries = m_entries;
     for (Entry& e : out.m_entries) e.id = ids_by_id[e.id];
@@ -229,11 +231,9 @@ void PointIndex::rebuild_changed(uint32_t begin, uint32_t end, const std::vector
     };
     std::for_each(m_entries.begin() + begin, m_entries.begin() + end, take);
     std::for_each(m_added.begin() + m_added_first[begin], m_added.begin() + m_added_first[end], take);
-    PointIndex tree(points);
-    for (Entry& e : tree.m_entries) e.id = ids[e.id];
     m_axis[mid] = rebuilt_range;
     m_rebuilt_mids.push_back(mid);  // ranges are met left to right: ascending
-    m_rebuilt.push_back(std::move(tree));
+    m_rebuilt.push_back(answering_as(points, ids));
 }
 
 template <class Heap, class Ids>

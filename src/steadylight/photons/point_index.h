@@ -112,6 +112,8 @@ private:
         float distance2 = 0;
     };
 
+    /// An index over `points` whose point i answers as `ids[i]`.
+    static PointIndex answering_as(const std::vector<Vec3>& points, const std::vector<uint32_t>& ids);
     void build(uint32_t begin, uint32_t end, Vec3 lower, Vec3 upper);
     /// Where the leaf whose cell holds p begins.
     uint32_t leaf_of(Vec3 p) const;
