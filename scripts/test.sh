@@ -27,7 +27,8 @@ slow_under_sanitizers+='|PixelReuse\.PixelsWithNoTermChanged'
 # The Blender add-on's test runs in the Release pass only: Blender's start-ups are most of it, and
 # the steadylight code it runs is the sanitized suite's already.
 slow_under_sanitizers+='|blender\.'
-# The repository's checks (format, documentation links, layers) read no build: the Release pass runs them.
+# The repository's checks (format, documentation links, layers) read no build: the Release pass
+# runs them.
 slow_under_sanitizers+='|repo\.)'
 
 # Builds and runs the suite with the sanitizers of $1; further arguments go to ctest.
