@@ -3,8 +3,8 @@
 #   bash scripts/test.sh
 #       The README's test command, and CI's (.ci/run): the whole suite in build/ (Release), then
 #       the AddressSanitizer and UndefinedBehaviorSanitizer build (build-address-undefined/) on
-#       every test but the slowest (slow_under_sanitizers below), so that the run stays near 20
-#       minutes on 2 cores.
+#       every test but the slowest and the repository checks (left_out_under_sanitizers below),
+#       so that the run stays near 20 minutes on 2 cores.
 #   bash scripts/test.sh --sanitize LIST [CTEST OPTION...]
 #       The whole suite (or what the ctest options select, e.g. -R 'cli\.kill_resume') in
 #       build-LIST/ with those sanitizers: address,undefined or thread. The
@@ -18,18 +18,19 @@ cd "$(dirname "$0")/.."
 # depend on.
 bash scripts/setup.sh clang-format chromium sshfs openssh-server blender python3-numpy
 
-# Tests over 10 s each under the address and undefined sanitizers (60% of that suite's time):
-# the kill-and-resume and farm runs, the truth suite's renders, the longest animation tests.
-slow_under_sanitizers='^(cli\.(kill_resume|blender_room|disk_faults|farm_share|resume)|farm\.(slurm|slurm_faults|sshfs)|Scenes/TruthSuite\.'
-slow_under_sanitizers+='|Localized\.(CacheFileOfTheLightOff|FrozenCacheRecomputes|SwitchedOnLight|StaticCacheIsSaved)'
-slow_under_sanitizers+='|DynamicPhotons\.StaticPathsRetracedWhere|ComposedMaps\.MovingAbsorbingGlass'
-slow_under_sanitizers+='|PixelReuse\.PixelsWithNoTermChanged'
+# Left out of the sanitized pass: the tests over 10 s each under the address and undefined
+# sanitizers (60% of that suite's time): the kill-and-resume and farm runs, the truth suite's
+# renders, the longest animation tests.
+left_out_under_sanitizers='^(cli\.(kill_resume|blender_room|disk_faults|farm_share|resume)|farm\.(slurm|slurm_faults|sshfs)|Scenes/TruthSuite\.'
+left_out_under_sanitizers+='|Localized\.(CacheFileOfTheLightOff|FrozenCacheRecomputes|SwitchedOnLight|StaticCacheIsSaved)'
+left_out_under_sanitizers+='|DynamicPhotons\.StaticPathsRetracedWhere|ComposedMaps\.MovingAbsorbingGlass'
+left_out_under_sanitizers+='|PixelReuse\.PixelsWithNoTermChanged'
 # The Blender add-on's test runs in the Release pass only: Blender's start-ups are most of it, and
 # the steadylight code it runs is the sanitized suite's already.
-slow_under_sanitizers+='|blender\.'
+left_out_under_sanitizers+='|blender\.'
 # The repository's checks (format, documentation links, layers) read no build: the Release pass
 # runs them.
-slow_under_sanitizers+='|repo\.)'
+left_out_under_sanitizers+='|repo\.)'
 
 # Builds and runs the suite with the sanitizers of $1; further arguments go to ctest.
 sanitized_suite() {
@@ -63,4 +64,4 @@ if [ "${1:-}" == --sanitize ]; then
 fi
 bash scripts/build.sh
 ctest --test-dir build --output-on-failure --timeout 900
-sanitized_suite address,undefined --parallel "$(nproc)" --exclude-regex "$slow_under_sanitizers"
+sanitized_suite address,undefined --parallel "$(nproc)" --exclude-regex "$left_out_under_sanitizers"
