@@ -3,8 +3,9 @@
 # the localized method, one after the other, each from an empty folder (the static pass and the
 # writing included, as a user's first run): the whole run's wall time and their ratio. Error
 # against converged references is quality_bench's. Prints, asserts nothing.
-#   bash bench/methods_bench.sh [SCENE:FRAMES:SIZE...]
-#       default: ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960
+#   bash bench/methods_bench.sh [SCENE:FRAMES:SIZE[:LAYERS]...]
+#       default: ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960; LAYERS is --layers for
+#       both methods (all when left out).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=("$@")
@@ -14,23 +15,25 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # Wall time in milliseconds of one render into an empty folder.
-render_s() {  # SCENE FRAMES SIZE METHOD
-  local out=$work/$1_$4
+render_s() {  # SCENE FRAMES SIZE LAYERS METHOD
+  local out=$work/$1_$5
   rm -rf "$out"
   local start
   start=$(date +%s%N)
-  build/steadylight render "scenes/$1.json" --frames "$2" --size "$3" --method "$4" --out "$out" --quiet
+  build/steadylight render "scenes/$1.json" --frames "$2" --size "$3" --layers "$4" --method "$5" --out "$out" \
+    --quiet
   echo $(( ($(date +%s%N) - start) / 1000000 ))
 }
 
-printf '%-7s %-7s %-10s %12s %12s %10s\n' scene frames size photon localized ratio
+printf '%-7s %-7s %-10s %-7s %12s %12s %10s\n' scene frames size layers photon localized ratio
 # Milliseconds as seconds, and the ratio of two.
 seconds() { python3 -c "print(f'{$1 / 1000:.1f}')"; }
 ratio() { python3 -c "print(f'{$1 / $2:.2f}')"; }
 for run in "${runs[@]}"; do
-  IFS=: read -r scene frames size <<< "$run"
-  photon=$(render_s "$scene" "$frames" "$size" photon)
-  localized=$(render_s "$scene" "$frames" "$size" localized)
-  printf '%-7s %-7s %-10s %10s s %10s s %9sx\n' "$scene" "$frames" "$size" "$(seconds "$photon")" \
+  IFS=: read -r scene frames size layers <<< "$run"
+  layers=${layers:-all}
+  photon=$(render_s "$scene" "$frames" "$size" "$layers" photon)
+  localized=$(render_s "$scene" "$frames" "$size" "$layers" localized)
+  printf '%-7s %-7s %-10s %-7s %10s s %10s s %9sx\n' "$scene" "$frames" "$size" "$layers" "$(seconds "$photon")" \
     "$(seconds "$localized")" "$(ratio "$photon" "$localized")"
 done

@@ -46,17 +46,23 @@ struct RawOptions {
     int threads = 0;
     int gather_samples = 0;
     std::string method = std::string(method_info(MethodSettings{}.method).name);  // the default
-    std::string exr_type = "half", view_transform = "standard";
+    std::string exr_type = "half", view_transform = "standard", layers = "all";
 };
 
-/// The options that shape the written files: EXR pixel type, PNG view transform, transparent
-/// background, video.
+/// The options that shape the written files: EXR pixel type and layers, PNG view transform,
+/// transparent background, video.
 void add_output_options(CLI::App* command, RenderSettings& settings, RawOptions& raw) {
     command->add_option("--exr-type", raw.exr_type, "EXR channels: half (16-bit) or float (32-bit)")
         ->capture_default_str()
         ->check(CLI::IsMember({"half", "float"}));
     command->add_flag_callback(
         "--exr-float", [&raw] { raw.exr_type = "float"; }, "Same as --exr-type float");
+    command
+        ->add_option("--layers", raw.layers,
+                     "AOV layers after the beauty: all (the method's every layer, its analysis layers too), "
+                     "terms (direct, indirect, caustic, specular) or beauty (none)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"all", "terms", "beauty"}));
     command->add_option("--exposure", settings.output.view.exposure_ev, "PNG: exposure in stops (linear x 2^EV)")
         ->capture_default_str()
         ->check(CLI::Range(-64.0f, 64.0f));
@@ -199,6 +205,7 @@ void finish_settings(const RawOptions& raw, RenderSettings& settings) {
     if (raw.frames) settings.frames = parse_frame_selection(*raw.frames);
     if (!raw.size.empty()) parse_size(raw.size, settings);
     settings.output.exr_type = parse_exr_pixel_type(raw.exr_type);
+    settings.output.layers = parse_layer_set(raw.layers);
     settings.output.view.curve = parse_view_curve(raw.view_transform);
     if (raw.spp) settings.path.samples_per_pixel = settings.photon.shading.samples_per_pixel = *raw.spp;
     settings.photon.gather.theta_strata = std::max(2, int(std::lround(std::sqrt(raw.gather_samples / 2.0))));

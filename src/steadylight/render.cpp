@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include "steadylight/base/atomic_file.h"
+#include "steadylight/base/check.h"
 #include "steadylight/base/checkpoint.h"
 #include "steadylight/base/error.h"
 #include "steadylight/base/stopwatch.h"
@@ -237,12 +238,26 @@ bool contains(const std::vector<int>& frames, int frame) {
     return std::find(frames.begin(), frames.end(), frame) != frames.end();
 }
 
-/// One frame: the scene placed there and the method's frame pass. A value that is not finite
-/// leaves as 0, counted in the frame's statistics and reported (output/frame_layers.h).
+/// Drops the AOV layers that `chosen` (--layers) leaves out of the files; `info` is the method's.
+void keep_chosen_layers(RenderedFrame& rendered, const MethodInfo& info, LayerSet chosen) {
+    if (chosen == LayerSet::all) return;
+    SL_CHECK(rendered.layers.size() == info.layers.size());
+    std::vector<NamedImage> kept;
+    for (size_t i = 0; i < info.layers.size(); ++i)
+        if (chosen == LayerSet::terms && info.layers[i].kind == LayerKind::term)
+            kept.push_back(std::move(rendered.layers[i]));
+    rendered.layers = std::move(kept);
+}
+
+/// One frame: the scene placed there and the method's frame pass, with the layers --layers
+/// chooses. A value that is not finite leaves as 0, counted in the frame's statistics and
+/// reported (output/frame_layers.h).
 RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, RayTracer& tracer, const Bsdfs& bsdfs,
                            const StaticSolution* solution, const CameraSeenSides* seen, int frame) {
     const PlacedFrame placed(scene, tracer, bsdfs, frame);
-    RenderedFrame rendered = method_info(settings.method).render_frame(placed.context(), solution, settings);
+    const MethodInfo& info = method_info(settings.method);
+    RenderedFrame rendered = info.render_frame(placed.context(), solution, settings);
+    keep_chosen_layers(rendered, info, settings.output.layers);
     if (rendered.stats && seen)
         rendered.stats->distant_photons_inside = distant_photons_inside(placed.context(), *seen).value_or(-1);
     const NonFiniteValues non_finite = replace_non_finite(rendered.beauty, rendered.layers);

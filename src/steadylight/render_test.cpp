@@ -1,10 +1,11 @@
 // render_animation() across runs: resume, --overwrite, a dead claim left beside a complete frame,
-// other settings, and Ctrl-C; a transparent background in the written files.
+// other settings, and Ctrl-C; a transparent background and the chosen layers in the written files.
 #include "steadylight/render.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -157,6 +158,66 @@ TEST_F(RenderResume, TransparentBackgroundWritesAlphaAndIsASetting) {
     const Rgb corner = read_exr(exr).pixels[0];  // the world again (in half floats)
     EXPECT_NEAR(corner.r, 0.2f, 1e-3f);
     EXPECT_NEAR(corner.b, 0.5f, 1e-3f);
+}
+
+/// The names of the EXR's channels.
+std::vector<std::string> channel_names(const std::string& exr) {
+    std::vector<std::string> names;
+    for (const ExrChannelInfo& channel : read_exr_channels(exr)) names.push_back(channel.name);
+    return names;
+}
+
+// --layers: the localized method's analysis layers only when all are chosen, the light's terms
+// unless the beauty alone is, the same values in every file that has them; and the choice is a
+// setting of the folder, absent for all (what folders rendered before the option hold).
+TEST_F(RenderResume, LayersChooseTheAovsAndAreASetting) {
+    m_settings.method = Method::localized;
+    m_settings.photon.photons = {.global_photons = 2000, .caustic_photons = 500};
+    m_settings.photon.shading.samples_per_pixel = 1;
+    m_settings.frames = parse_frame_selection("1");
+    const std::string exr = frame_file_name(m_settings.out_dir, "ball", 1, "exr");
+    // The frame rendered again (--overwrite) with each choice, its EXR kept under the choice's name.
+    const auto render_with = [&](LayerSet layers) {
+        m_settings.output.layers = layers;
+        render_animation(m_settings);
+        m_settings.overwrite = true;
+        std::ifstream file(settings_file_name(m_settings.out_dir, "ball"));
+        const nlohmann::json output = nlohmann::json::parse(file)["render"]["output"];
+        const std::string kept = m_settings.out_dir + "/" + std::string(layer_set_name(layers)) + ".exr";
+        fs::copy_file(exr, kept);
+        return std::pair{kept, output};
+    };
+    const auto [all, all_output] = render_with(LayerSet::all);
+    const auto [terms, terms_output] = render_with(LayerSet::terms);
+    const auto [beauty, beauty_output] = render_with(LayerSet::beauty);
+
+    EXPECT_EQ(channel_names(beauty), (std::vector<std::string>{"B", "G", "R", "beauty.B", "beauty.G", "beauty.R"}));
+    const std::vector<std::string> term_channels = channel_names(terms);
+    EXPECT_EQ(term_channels.size(), 6u + 4 * 3);
+    for (const std::string& name : term_channels) {
+        const std::string layer = name.substr(0, name.find('.'));
+        EXPECT_TRUE(name.size() == 1 || layer == "beauty" || layer == "direct" || layer == "indirect" ||
+                    layer == "caustic" || layer == "specular")
+            << name;
+        EXPECT_EQ(read_exr_channel(terms, name), read_exr_channel(all, name)) << name;
+    }
+    for (const std::string& name : channel_names(beauty))
+        EXPECT_EQ(read_exr_channel(beauty, name), read_exr_channel(all, name)) << name;
+    const std::vector<std::string> all_channels = channel_names(all);
+    for (const std::string analysis : {"indirect_static.R", "L_y.R", "L_t.R", "influence.Y", "changed.Y"})
+        EXPECT_NE(std::find(all_channels.begin(), all_channels.end(), analysis), all_channels.end()) << analysis;
+
+    EXPECT_FALSE(all_output.contains("layers"));
+    EXPECT_EQ(terms_output["layers"], "terms");
+    EXPECT_EQ(beauty_output["layers"], "beauty");
+    m_settings.overwrite = false;
+    m_settings.output.layers = LayerSet::all;
+    EXPECT_NE(
+        testing::input_error_of([&] { render_animation(m_settings); }).find("/output/layers: \"beauty\" -> (none)"),
+        std::string::npos);
+    EXPECT_EQ(parse_layer_set("terms"), LayerSet::terms);
+    EXPECT_EQ(testing::input_error_of([] { parse_layer_set("analysis"); }),
+              "--layers: unknown layer set \"analysis\" (all, terms or beauty)");
 }
 
 TEST(Info, NamesMovingLightsAndTheSegmentsTheyMake) {

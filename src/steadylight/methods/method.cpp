@@ -12,41 +12,47 @@
 namespace steadylight {
 namespace {
 
-/// An AOV of a method's frame struct: its name and where the frame keeps it.
+/// An AOV of a method's frame struct: its name, what it holds and where the frame keeps it.
 template <class Frame>
 struct LayerOf {
     std::string_view name;
+    LayerKind kind;
     Image Frame::*image;
     bool grey = false;
 };
 
+constexpr LayerKind term = LayerKind::term, analysis = LayerKind::analysis;
+
 const std::vector<LayerOf<PhotonFrame>> photon_layers = {
-    {"direct", &PhotonFrame::direct},     {"indirect", &PhotonFrame::indirect},     {"caustic", &PhotonFrame::caustic},
-    {"specular", &PhotonFrame::specular}, {"records", &PhotonFrame::records, true},
+    {"direct", term, &PhotonFrame::direct},
+    {"indirect", term, &PhotonFrame::indirect},
+    {"caustic", term, &PhotonFrame::caustic},
+    {"specular", term, &PhotonFrame::specular},
+    {"records", analysis, &PhotonFrame::records, true},
 };
 
 const std::vector<LayerOf<LocalizedFrame>> localized_layers = {
-    {"direct", &LocalizedFrame::direct},
-    {"indirect", &LocalizedFrame::indirect},
-    {"caustic", &LocalizedFrame::caustic},
-    {"specular", &LocalizedFrame::specular},
-    {"indirect_static", &LocalizedFrame::indirect_static},
-    {"L_y", &LocalizedFrame::L_y},
-    {"L_t", &LocalizedFrame::L_t},
-    {"influence", &LocalizedFrame::influence, true},
-    {"dynamic", &LocalizedFrame::dynamic, true},
-    {"static_records", &LocalizedFrame::static_records, true},
-    {"dynamic_records", &LocalizedFrame::dynamic_records, true},
-    {"changed", &LocalizedFrame::changed, true},
+    {"direct", term, &LocalizedFrame::direct},
+    {"indirect", term, &LocalizedFrame::indirect},
+    {"caustic", term, &LocalizedFrame::caustic},
+    {"specular", term, &LocalizedFrame::specular},
+    {"indirect_static", analysis, &LocalizedFrame::indirect_static},
+    {"L_y", analysis, &LocalizedFrame::L_y},
+    {"L_t", analysis, &LocalizedFrame::L_t},
+    {"influence", analysis, &LocalizedFrame::influence, true},
+    {"dynamic", analysis, &LocalizedFrame::dynamic, true},
+    {"static_records", analysis, &LocalizedFrame::static_records, true},
+    {"dynamic_records", analysis, &LocalizedFrame::dynamic_records, true},
+    {"changed", analysis, &LocalizedFrame::changed, true},
 };
 
 const std::vector<LayerOf<PathFrame>> path_layers = {};  // the beauty only
 
 template <class Frame>
-std::vector<std::string_view> names_of(const std::vector<LayerOf<Frame>>& layers) {
-    std::vector<std::string_view> names;
-    for (const LayerOf<Frame>& layer : layers) names.push_back(layer.name);
-    return names;
+std::vector<LayerInfo> infos_of(const std::vector<LayerOf<Frame>>& layers) {
+    std::vector<LayerInfo> infos;
+    for (const LayerOf<Frame>& layer : layers) infos.push_back({layer.name, layer.kind});
+    return infos;
 }
 
 /// `frame` as a RenderedFrame of `method`, its layers taken out in table order.
@@ -94,7 +100,7 @@ const std::vector<MethodInfo>& methods() {
          true,
          false,
          {.photon = true, .localized = true},
-         names_of(localized_layers),
+         infos_of(localized_layers),
          render_localized},
         {Method::photon,
          "photon",
@@ -102,7 +108,7 @@ const std::vector<MethodInfo>& methods() {
          false,
          true,
          {.photon = true},
-         names_of(photon_layers),
+         infos_of(photon_layers),
          render_photon},
         {Method::frozen,
          "frozen",
@@ -110,7 +116,7 @@ const std::vector<MethodInfo>& methods() {
          true,
          false,
          {.photon = true},
-         names_of(localized_layers),
+         infos_of(localized_layers),
          render_frozen},
         {Method::path,
          "path",
@@ -118,7 +124,7 @@ const std::vector<MethodInfo>& methods() {
          false,
          false,
          {.path = true},
-         names_of(path_layers),
+         infos_of(path_layers),
          render_path},
     };
     return table;

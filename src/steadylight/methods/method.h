@@ -29,6 +29,18 @@ enum class Method {
     path,       // the path tracer, ground truth
 };
 
+/// What an AOV layer holds: a term of the light (direct, indirect, caustic, specular: what a
+/// compositor grades apart) or a picture of how the method worked (its records, the influence,
+/// the corrections: the paper's figures). `--layers` chooses which a frame's files get.
+enum class LayerKind { term, analysis };
+
+struct LayerInfo {
+    std::string_view name;
+    LayerKind kind;
+
+    bool operator==(const LayerInfo&) const = default;
+};
+
 /// The settings of every method; each reads its own parts (MethodInfo::reads).
 struct MethodSettings {
     Method method = Method::localized;
@@ -61,8 +73,8 @@ struct MethodInfo {
     bool is_reference;             // the method the report compares the others with (ratios)
     struct Reads {
         bool path = false, photon = false, localized = false;
-    } reads;                               // the parts of MethodSettings it reads
-    std::vector<std::string_view> layers;  // its AOV layers after the beauty, in EXR order
+    } reads;                        // the parts of MethodSettings it reads
+    std::vector<LayerInfo> layers;  // its AOV layers after the beauty, in EXR order
     RenderFrameFunction render_frame;
 };
 
