@@ -4,6 +4,7 @@
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/passes/photon_gather.h"
+#include "steadylight/passes/pixel_reuse.h"
 
 namespace steadylight {
 
@@ -43,6 +44,19 @@ bool KeptCentreRays::sees_static_directly(const FrameContext& context, int x, in
     const float static_t = m_static_t[size_t(y) * size_t(m_grid.width) + size_t(x)];
     return static_t >= 0 &&
            !context.tracer.meets_dynamic(context.frame.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f), static_t);
+}
+
+bool KeptCentreRays::sees_static_directly(const FrameContext& context, int x, int y,
+                                          const std::vector<uint8_t>& near_dynamic) const {
+    const size_t i = size_t(y) * size_t(m_grid.width) + size_t(x);
+    return near_dynamic[i] ? sees_static_directly(context, x, y) : m_static_t[i] >= 0;
+}
+
+std::vector<uint8_t> pixels_near_dynamic(const FrameContext& context) {
+    const Camera& camera = context.frame.camera;
+    std::vector<uint8_t> near(size_t(camera.width) * size_t(camera.height), 0);
+    for (const BoundingSphere& object : context.tracer.dynamic_bounds()) mark_sphere_on_screen(camera, object, near);
+    return near;
 }
 
 }  // namespace steadylight

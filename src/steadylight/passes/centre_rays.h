@@ -7,6 +7,7 @@
 // the kept one, and the frame asks the dynamic objects alone, bit for bit the same answer.
 #pragma once
 
+#include <cstdint>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -34,6 +35,10 @@ public:
     /// what it sees with the dynamic objects left out, directly: then its point (cache_point_at)
     /// lies on a static object or is none, and is the kept one.
     bool sees_static_directly(const FrameContext& context, int x, int y) const;
+    /// The same answer, with a ray only where `near_dynamic` (pixels_near_dynamic) says the
+    /// centre's ray may pass through a dynamic object's bounds: elsewhere it cannot meet one.
+    bool sees_static_directly(const FrameContext& context, int x, int y,
+                              const std::vector<uint8_t>& near_dynamic) const;
     /// Influence sample i (of SampleGrid's order) where sees_static_directly.
     const Sample& sample(size_t i) const { return m_samples[i]; }
 
@@ -45,6 +50,11 @@ private:
     mutable std::vector<Sample> m_samples;  // per sample of m_grid
     mutable SampleGrid m_grid;
 };
+
+/// Per pixel, row by row, 1 where its camera rays may pass through the bounds of one of
+/// `context`'s dynamic objects (mark_sphere_on_screen), else 0: most of the screen, where a
+/// pixel's centre sees what the kept rays saw without a ray.
+std::vector<uint8_t> pixels_near_dynamic(const FrameContext& context);
 
 /// The static indirect irradiance the influence is measured against at (p, n): its largest
 /// channel, 0 where the static cache has none.

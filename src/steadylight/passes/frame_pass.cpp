@@ -237,7 +237,11 @@ CacheBuildStats build_dynamic_cache(IrradianceCache& dynamic_cache, const FrameC
     };
     // Where the influence is not felt, only a centre that sees a dynamic object wants a record.
     std::function<bool(int, int)> may_want;
-    if (kept) may_want = [&](int x, int y) { return felt(x, y) || !kept->sees_static_directly(context, x, y); };
+    std::vector<uint8_t> near_dynamic;
+    if (kept) {
+        near_dynamic = pixels_near_dynamic(context);
+        may_want = [&](int x, int y) { return felt(x, y) || !kept->sees_static_directly(context, x, y, near_dynamic); };
+    }
     return build_photon_cache(dynamic_cache, {context, irradiance, photon.irradiance_estimate.max_radius, photon.gather,
                                               Visibility::everything, wanted, may_want});
 }
