@@ -173,15 +173,25 @@ TEST(ImageWriter, PngDecodesToTheEncodedBytes) {
 
 // Half layers hold only finite values: beyond 65504 a half is +inf (a compositor's blur would
 // spread it), so larger values are clamped to it, and a NaN is written as 0.
+// In the first eight pixels of a line (converted eight at a time where the processor can) and in
+// the last ones (one by one) alike.
 TEST(ImageWriter, HalfExrValuesAreFinite) {
     const std::string path = (fs::temp_directory_path() / "steadylight_finite.exr").string();
-    Image image(3, 1);
-    image.at(0, 0) = {1e6f, -1e6f, 2};
-    image.at(1, 0) = {std::numeric_limits<float>::quiet_NaN(), 1, std::numeric_limits<float>::infinity()};
+    Image image(11, 1);
+    for (const int x : {0, 9}) {
+        image.at(x, 0) = {1e6f, -1e6f, 2};
+        image.at(x + 1, 0) = {std::numeric_limits<float>::quiet_NaN(), 1, std::numeric_limits<float>::infinity()};
+    }
+    image.at(2, 0) = {-0.0f, -std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::quiet_NaN()};
     write_exr(path, image);
     const Image back = read_exr(path);
-    EXPECT_EQ(back.at(0, 0), (Rgb{65504, -65504, 2}));
-    EXPECT_EQ(back.at(1, 0), (Rgb{0, 1, 65504}));
+    for (const int x : {0, 9}) {
+        EXPECT_EQ(back.at(x, 0), (Rgb{65504, -65504, 2})) << x;
+        EXPECT_EQ(back.at(x + 1, 0), (Rgb{0, 1, 65504})) << x;
+    }
+    EXPECT_EQ(back.at(2, 0), (Rgb{0, -65504, 0}));
+    EXPECT_TRUE(std::signbit(back.at(2, 0).r));   // -0 stays -0
+    EXPECT_FALSE(std::signbit(back.at(2, 0).b));  // a NaN becomes +0, whatever its sign
     fs::remove(path);
 }
 
@@ -190,7 +200,7 @@ TEST(ImageWriter, HalfExrValuesAreFinite) {
 // rounds (to even), the tiny ones to denormals and zero too.
 TEST(ImageWriter, HalfExrValuesAreTheNearestHalves) {
     const std::string path = (fs::temp_directory_path() / "steadylight_nearest.exr").string();
-    Image image(64, 150);  // lines in three batches of the writer's
+    Image image(61, 150);  // lines in three batches of the writer's, the last not a multiple of 8 values
     Pcg32 rng(11);
     for (Rgb& pixel : image.pixels) {
         const auto value = [&] { return (rng.next_float() - 0.5f) * std::exp2(float(int(rng.next_u32() % 56) - 40)); };
