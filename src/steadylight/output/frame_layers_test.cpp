@@ -32,6 +32,17 @@ TEST(FrameLayers, NonFiniteValuesAreWrittenAsZeroAndReported) {
     EXPECT_EQ(aovs[0].image.at(3, 0).g, 1e30f);
     EXPECT_EQ(beauty.at(1, 1).g, 2);
     EXPECT_EQ(replace_non_finite(beauty, aovs).count, 0);
+
+    // The first is the first in layer order, the beauty's first of all, then pixel order.
+    aovs[1].image.at(0, 0).b = std::numeric_limits<float>::quiet_NaN();
+    aovs[0].image.at(3, 2).r = std::numeric_limits<float>::infinity();
+    const NonFiniteValues in_two = replace_non_finite(beauty, aovs);
+    EXPECT_EQ(in_two.count, 2);
+    EXPECT_EQ(in_two.first_layer, "direct");
+    EXPECT_EQ(in_two.first_x, 3);
+    beauty.at(2, 2).r = -std::numeric_limits<float>::infinity();
+    aovs[0].image.at(0, 0).r = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(replace_non_finite(beauty, aovs).first_layer, "beauty");
 }
 
 // Blender's RenderResult.load_from_file fills a pass only from channels named
