@@ -28,11 +28,13 @@
 namespace steadylight {
 namespace {
 
-/// `value` as a half, clamped to the largest finite half (65504): above it a half is +inf, which
-/// a compositor's blur would spread over the image. A NaN (which render_frame has replaced
-/// already, output/frame_layers.h) becomes 0 here too.
+/// The largest finite half: above it a half is +inf, which a compositor's blur would spread over
+/// the image.
+constexpr float max_half = 65504.0f;
+
+/// `value` as a half, clamped to +-max_half. A NaN (which render_frame has replaced already,
+/// output/frame_layers.h) becomes 0 here too.
 half to_finite_half(float value) {
-    constexpr float max_half = 65504.0f;
     return std::isnan(value) ? half(0.0f) : half(std::clamp(value, -max_half, max_half));
 }
 
@@ -47,7 +49,6 @@ void to_finite_halves_one_by_one(const float* floats, half* out, size_t count) {
 /// halves, since both round to the nearest (ties to even), denormals too. A NaN fails the
 /// ordered comparison and is masked to +0, as to_finite_half has it.
 __attribute__((target("avx,f16c"))) void to_finite_halves_f16c(const float* floats, half* out, size_t count) {
-    constexpr float max_half = 65504.0f;
     const __m256 lowest = _mm256_set1_ps(-max_half), highest = _mm256_set1_ps(max_half);
     size_t i = 0;
     for (; i + 8 <= count; i += 8) {
