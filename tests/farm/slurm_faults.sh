@@ -5,10 +5,11 @@
 # one-machine render, and the finishing job's log says what is missing, if anything.
 # To stop a task mid-chunk at the same point in every run, its jobs are submitted held
 # (SBATCH_HOLD), the bake released, the array released while the test holds the folder's lock
-# (a lock file naming this shell: the task waits at it before any frame), and the task's process stopped (SIGSTOP) and then run
-# in slices of about a millisecond until one frame of its chunk is complete and it is inside the
-# next one (a frame at this size takes 10-30 ms, its write a few: longer slices can step over
-# that moment and past the chunk's end).
+# (a lock file naming this shell: the task waits at it before any frame), and the task's process
+# stopped (SIGSTOP, seen to hold in every thread before the lock goes, and sent again whenever it
+# is found running outside a slice) and then run in slices of about a millisecond until one frame
+# of its chunk is complete and it is inside the next one (a frame at this size takes 10-30 ms, its
+# write a few: longer slices can step over that moment and past the chunk's end).
 # 1. A task killed mid-chunk (SIGKILL of its steadylight process, which leaves its claim): the
 #    finishing job fails naming the frames the task did not write; the resubmission renders only
 #    those, takes the dead claim over at once (its pid on this host is gone) and removes the
@@ -71,11 +72,27 @@ wait_state() {  # wait_state JOB STATE
   fail "job $1 is $(job_state "$1"), not $2"
 }
 
-stopped() {  # stopped PID: every thread of the process is stopped
-  local stat
+thread_states() {  # thread_states PID: the state letter of each thread of the process (none once it ended)
+  local stat line states=
   for stat in /proc/"$1"/task/*/stat; do
-    [ "$(sed 's/.*) \(.\).*/\1/' "$stat" 2>/dev/null)" = T ] || return 1
+    read -r line < "$stat" 2>/dev/null || continue
+    line=${line##*) }  # the field after the command's name, which may hold spaces and parentheses
+    states+=${line%% *}
   done
+  echo "$states"
+}
+all_stopped() { [ -n "$1" ] && [ -z "${1//T/}" ]; }  # all_stopped STATES: every thread stopped
+stopped() { all_stopped "$(thread_states "$1")"; }   # stopped PID
+# Stops PID and waits until every thread of it is stopped, sending SIGSTOP again while one is not
+# (a SIGCONT from elsewhere must not let the task run through its chunk unseen). Fails naming the
+# process and its threads' states if it does not stop.
+stop_task() {  # stop_task PID
+  for _ in $(seq 400); do
+    kill -STOP "$1" 2>/dev/null || fail "the task (pid $1) ended before it was stopped"
+    stopped "$1" && return 0
+    sleep 0.005
+  done
+  fail "the task (pid $1) does not stop: $(tr '\0' ' ' < "/proc/$1/cmdline"), threads $(thread_states "$1")"
 }
 
 # Runs the stopped process PID in slices of about 1 ms until a frame of FIRST..LAST is complete and
@@ -83,10 +100,12 @@ stopped() {  # stopped PID: every thread of the process is stopped
 # earlier frames written and their claims gone), with DIR's lock free; leaves it stopped there.
 # Sets inside (that frame).
 step_to_mid_chunk() {  # step_to_mid_chunk PID DIR FIRST LAST
-  local frame base written claims seen=
+  local frame base written claims seen= states=
   for _ in $(seq 20000); do
-    kill -0 "$1" 2>/dev/null || fail "the task (pid $1) ended before it was stopped inside its chunk; last seen:$seen"
-    if stopped "$1"; then
+    kill -0 "$1" 2>/dev/null ||
+      fail "the task (pid $1) ended before it was stopped inside its chunk; last seen:$seen; its threads last:$states"
+    states=$(thread_states "$1")
+    if all_stopped "$states"; then
       written=0 claims=() seen=
       for frame in $(seq "$3" "$4"); do
         base=$(printf "%s/ball_%04d" "$2" "$frame")
@@ -98,8 +117,9 @@ step_to_mid_chunk() {  # step_to_mid_chunk PID DIR FIRST LAST
         [ ! -e "$2/.steadylight.lock" ] && return 0
       kill -CONT "$1"
       sleep 0.001
-      kill -STOP "$1" 2>/dev/null || fail "the task (pid $1) ended within a slice, past its chunk's middle; last seen:$seen"
     fi
+    # Again while it has not stopped yet: a SIGCONT from elsewhere must not let it run on.
+    kill -STOP "$1" 2>/dev/null || fail "the task (pid $1) ended within a slice, past its chunk's middle; last seen:$seen"
     sleep 0.002
   done
   fail "the task (pid $1) did not reach the middle of its chunk; last seen:$seen"
@@ -127,8 +147,8 @@ submit_stopped_mid_chunk() {  # submit_stopped_mid_chunk DIR LOG FIRST LAST [SUB
     sleep 0.05
   done
   [ -n "$pid" ] || { squeue; fail "no task of array ${jobs[1]} renders frames $first-$last"; }
-  kill -STOP "$pid"
   caught+=("$pid")
+  stop_task "$pid"
   rm "$dir/.steadylight.lock"
   step_to_mid_chunk "$pid" "$dir" "$first" "$last"
 }
