@@ -52,11 +52,4 @@ bool KeptCentreRays::sees_static_directly(const FrameContext& context, int x, in
     return near_dynamic[i] ? sees_static_directly(context, x, y) : m_static_t[i] >= 0;
 }
 
-std::vector<uint8_t> pixels_near_dynamic(const FrameContext& context) {
-    const Camera& camera = context.frame.camera;
-    std::vector<uint8_t> near(size_t(camera.width) * size_t(camera.height), 0);
-    for (const BoundingSphere& object : context.tracer.dynamic_bounds()) mark_sphere_on_screen(camera, object, near);
-    return near;
-}
-
 }  // namespace steadylight

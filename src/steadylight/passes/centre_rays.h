@@ -51,11 +51,6 @@ private:
     mutable SampleGrid m_grid;
 };
 
-/// Per pixel, row by row, 1 where its camera rays may pass through the bounds of one of
-/// `context`'s dynamic objects (mark_sphere_on_screen), else 0: most of the screen, where a
-/// pixel's centre sees what the kept rays saw without a ray.
-std::vector<uint8_t> pixels_near_dynamic(const FrameContext& context);
-
 /// The static indirect irradiance the influence is measured against at (p, n): its largest
 /// channel, 0 where the static cache has none.
 float influence_reference(const IrradianceCache& static_cache, Vec3 p, Vec3 n);

@@ -226,34 +226,34 @@ const StaticFrame* reusable_static_frame(const FrameContext& context, const Stat
 }
 
 /// L_y: the dynamic cache, built only where the influence is felt and on dynamic objects.
-/// `kept`, in a still view: what its pixel centres see with the dynamic objects left out.
+/// `kept`, in a still view: what its pixel centres see with the dynamic objects left out, and
+/// `near_dynamic` where a centre's ray may meet a dynamic object (pixels_near_dynamic).
 CacheBuildStats build_dynamic_cache(IrradianceCache& dynamic_cache, const FrameContext& context,
                                     const IrradiancePhotons& irradiance, const InfluenceMap& influence,
                                     const PhotonMappingSettings& photon, const LocalizedSettings& localized,
-                                    bool frozen, const KeptCentreRays* kept) {
+                                    bool frozen, const KeptCentreRays* kept, const std::vector<uint8_t>& near_dynamic) {
     const auto felt = [&](int x, int y) { return !frozen && influence.at(x, y) > localized.tau_lower; };
     const auto wanted = [&](const CachePoint& point, int x, int y) {
         return context.scene.object(point.object).is_dynamic() || felt(x, y);
     };
     // Where the influence is not felt, only a centre that sees a dynamic object wants a record.
     std::function<bool(int, int)> may_want;
-    std::vector<uint8_t> near_dynamic;
-    if (kept) {
-        near_dynamic = pixels_near_dynamic(context);
+    if (kept)
         may_want = [&](int x, int y) { return felt(x, y) || !kept->sees_static_directly(context, x, y, near_dynamic); };
-    }
     return build_photon_cache(dynamic_cache, {context, irradiance, photon.irradiance_estimate.max_radius, photon.gather,
                                               Visibility::everything, wanted, may_want});
 }
 
 /// Which pixels a frame shades again against the static frame `base`, and what it reuses
-/// (pixel_reuse.h); the counts go into `stats`.
-PixelPlan plan_frame_pixels(const FrameContext& context, const StaticFrame& base, const FramePhotons& traced,
-                            const IrradianceCache& static_cache, const std::vector<uint8_t>& changed_records,
-                            const InfluenceMap& influence, const PhotonMappingSettings& photon,
-                            const LocalizedSettings& localized, FrameStats& stats) {
+/// (pixel_reuse.h), given `near_dynamic` (pixels_near_dynamic); the counts go into `stats`.
+PixelPlan plan_frame_pixels(const FrameContext& context, const StaticFrame& base, std::vector<uint8_t> near_dynamic,
+                            const FramePhotons& traced, const IrradianceCache& static_cache,
+                            const std::vector<uint8_t>& changed_records, const InfluenceMap& influence,
+                            const PhotonMappingSettings& photon, const LocalizedSettings& localized,
+                            FrameStats& stats) {
     const Camera& camera = context.frame.camera;
     const FrameChanges changes{context.tracer.dynamic_bounds(),
+                               std::move(near_dynamic),
                                context.lights.bounds(),
                                indirect_changes(camera, static_cache, changed_records, influence, localized),
                                std::find(changed_records.begin(), changed_records.end(), 1) != changed_records.end(),
@@ -347,6 +347,9 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     // segment's (the influence and L_y ask for it).
     const StaticFrame* base = reusable_static_frame(context, solution, frozen);
     const KeptCentreRays* centre_rays = base ? solution.centre_rays.get() : nullptr;
+    // And the pixels whose camera rays may meet a dynamic object (L_y's placement and the plan ask).
+    std::vector<uint8_t> near_dynamic =
+        base ? pixels_near_dynamic(context.frame.camera, context.tracer.dynamic_bounds()) : std::vector<uint8_t>{};
 
     // Influence of the dynamic objects on each pixel's point.
     const InfluenceMap influence = timed_phase("influence", stats.influence_s, [&] {
@@ -360,7 +363,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     IrradianceCache dynamic_cache(photon.cache);
     const CacheBuildStats built = timed_phase("L_y", stats.cache_s, [&] {
         return build_dynamic_cache(dynamic_cache, context, traced.irradiance, influence, photon, localized, frozen,
-                                   centre_rays);
+                                   centre_rays, near_dynamic);
     });
     stats.irradiance_records = built.records_added;
     stats.gather_rays = built.gather_rays;
@@ -383,8 +386,8 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     PixelPlan plan;
     ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
         if (!base) return shade_localized(context, lighting, photon, localized, Visibility::everything, nullptr, stats);
-        plan = plan_frame_pixels(context, *base, traced, static_cache, changed_records, influence, photon, localized,
-                                 stats);
+        plan = plan_frame_pixels(context, *base, std::move(near_dynamic), traced, static_cache, changed_records,
+                                 influence, photon, localized, stats);
         PixelReuse reuse(*base, plan.work);
         set_reused_values(reuse, lighting);
         return shade_localized(context, lighting, photon, localized, Visibility::everything, &reuse, stats);

@@ -406,6 +406,12 @@ void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, s
                 mask[size_t(y) * size_t(camera.width) + size_t(x)] = 1;
 }
 
+std::vector<uint8_t> pixels_near_dynamic(const Camera& camera, const std::vector<BoundingSphere>& dynamic) {
+    std::vector<uint8_t> near(size_t(camera.width) * size_t(camera.height), 0);
+    for (const BoundingSphere& object : dynamic) mark_sphere_on_screen(camera, object, near, Outline::round);
+    return near;
+}
+
 void mark_spheres_on_screen(const Camera& camera, const std::vector<BoundingSphere>& spheres,
                             std::vector<uint8_t>& mask) {
     std::vector<PixelBox> boxes(spheres.size());
@@ -503,8 +509,6 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
     PixelPlan plan;
     plan.work.resize(pixels);
     plan.changed.assign(pixels, 0);
-    std::vector<uint8_t> seen(pixels, 0);  // a camera ray may meet a dynamic object
-    for (const BoundingSphere& object : changes.dynamic) mark_sphere_on_screen(camera, object, seen, Outline::round);
     const std::vector<std::vector<uint64_t>> changed_records = changes.changed_records.empty()
                                                                    ? std::vector<std::vector<uint64_t>>{}
                                                                    : base.marked_records(changes.changed_records);
@@ -516,7 +520,7 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
             const float slack = shadow_ray_slack(points);
             const bool chains = trace.flags & PixelRecorder::chain;
             uint8_t changed = 0;
-            if (seen[size_t(i)] || (trace.flags & PixelRecorder::open_chain)) changed |= camera_term;
+            if (changes.near_dynamic[size_t(i)] || (trace.flags & PixelRecorder::open_chain)) changed |= camera_term;
             const uint8_t* tile_free = shadow_free.free_pairs(size_t(i));
             for (const BoundingSphere& object : changes.dynamic) {
                 if (chains && may_meet_segments(object, points, points, slack)) changed |= camera_term;

@@ -265,6 +265,7 @@ enum ChangedTerm : uint8_t { camera_term = 1, direct_term = 2, indirect_term = 4
 /// What changed in a frame against its static frame.
 struct FrameChanges {
     std::vector<BoundingSphere> dynamic;  // the dynamic objects at this frame
+    std::vector<uint8_t> near_dynamic;    // per pixel, row by row: pixels_near_dynamic(camera, dynamic)
     std::vector<BoundingSphere> lights;
     enum IndirectChange : uint8_t { records = 1, blend = 2 };
     std::vector<uint8_t> indirect;  // per pixel, row by row: IndirectChange bits, why its indirect light may change
@@ -307,6 +308,11 @@ enum class Outline { box, round };
 /// it reaches behind the camera).
 void mark_sphere_on_screen(const Camera& camera, const BoundingSphere& sphere, std::vector<uint8_t>& mask,
                            Outline outline = Outline::box);
+
+/// Per pixel, row by row, 1 where its camera rays may pass through one of the `dynamic` objects'
+/// bounds (their round outlines), else 0: most of the screen, where a frame's camera rays meet
+/// what the static frame's met.
+std::vector<uint8_t> pixels_near_dynamic(const Camera& camera, const std::vector<BoundingSphere>& dynamic);
 
 /// The pixels [x0, x1] x [y0, y1] (none when x1 < x0 or y1 < y0).
 struct PixelBox {

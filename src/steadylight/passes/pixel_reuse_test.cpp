@@ -270,6 +270,7 @@ TEST(PixelReuse, ShadowTestsByTilesAnswerAsPixelByPixel) {
         const PlacedFrame placed(ball.scene, ball.tracer, ball.bsdfs, frame);
         const FrameContext& context = placed.context();
         const FrameChanges changes{context.tracer.dynamic_bounds(),
+                                   pixels_near_dynamic(context.frame.camera, context.tracer.dynamic_bounds()),
                                    context.lights.bounds(),
                                    std::vector<uint8_t>(pixels, 0),
                                    false,
