@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <string_view>
 
 #include "steadylight/base/parallel.h"
 
@@ -43,12 +44,12 @@ bool all_finite(const Image& image) {
     return non_finite == 0;
 }
 
-void replace_non_finite(Image& image, const std::string& layer, NonFiniteValues& found) {
+void replace_non_finite(Image& image, std::string_view layer, NonFiniteValues& found) {
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x)
             for (float* value : {&image.at(x, y).r, &image.at(x, y).g, &image.at(x, y).b}) {
                 if (std::isfinite(*value)) continue;
-                if (found.count++ == 0) found.first_layer = layer, found.first_x = x, found.first_y = y;
+                if (found.count++ == 0) found.first_layer = std::string(layer), found.first_x = x, found.first_y = y;
                 *value = 0;
             }
 }
@@ -59,17 +60,19 @@ NonFiniteValues replace_non_finite(Image& beauty, std::vector<NamedImage>& aovs)
     // The layers checked side by side (a production frame's dozen layers take tens of
     // milliseconds one by one, between the frame's rendering and the next), then those that
     // hold a non-finite value mended in order, so that the first one found is the same.
-    std::vector<std::pair<Image*, const std::string*>> layers;
-    static const std::string beauty_name = "beauty";
-    layers.push_back({&beauty, &beauty_name});
-    for (NamedImage& aov : aovs) layers.push_back({&aov.image, &aov.name});
+    struct Layer {
+        Image* image;
+        std::string_view name;
+    };
+    std::vector<Layer> layers{{&beauty, "beauty"}};
+    for (NamedImage& aov : aovs) layers.push_back({&aov.image, aov.name});
     std::vector<uint8_t> finite(layers.size());
     parallel_for_chunks(long(layers.size()), 1, [&](long begin, long end) {
-        for (long i = begin; i < end; ++i) finite[size_t(i)] = all_finite(*layers[size_t(i)].first);
+        for (long i = begin; i < end; ++i) finite[size_t(i)] = all_finite(*layers[size_t(i)].image);
     });
     NonFiniteValues found;
     for (size_t i = 0; i < layers.size(); ++i)
-        if (!finite[i]) replace_non_finite(*layers[i].first, *layers[i].second, found);
+        if (!finite[i]) replace_non_finite(*layers[i].image, layers[i].name, found);
     return found;
 }
 
