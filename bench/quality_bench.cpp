@@ -116,7 +116,8 @@ public:
             method_info(method).has_static_pass ? &static_solution(frame, settings) : nullptr;
         const PlacedFrame placed(m_scene, m_tracer, m_bsdfs, frame);
         const Stopwatch time;
-        Image beauty = method_info(method).render_frame(placed.context(), solution, settings).beauty;
+        Image beauty =
+            method_info(method).render_frame(placed.context(), solution, settings, AnalysisLayers::made).beauty;
         return {std::move(beauty), time.elapsed_s()};
     }
 

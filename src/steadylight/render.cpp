@@ -122,6 +122,11 @@ bool traces_static_photon_paths(const RenderSettings& settings) {
     return reuses_photon_paths(settings) || settings.method == Method::localized || settings.method == Method::frozen;
 }
 
+/// Whether frames compute their method's analysis layers: only when the files hold them.
+AnalysisLayers analysis_layers(const RenderSettings& settings) {
+    return settings.output.layers == LayerSet::all ? AnalysisLayers::made : AnalysisLayers::left_out;
+}
+
 /// What every frame of `segment` starts from: the method's static pass (or its file), and the
 /// static photon paths when frames use them. Only for methods that have either.
 StaticSolution segment_solution(const RenderSettings& settings, const Scene& scene, RayTracer& tracer,
@@ -140,8 +145,9 @@ StaticSolution segment_solution(const RenderSettings& settings, const Scene& sce
     StaticSolution solution = static_pass(settings, scene, tracer, segment, std::move(paths));
     solution.compose_photons = reuses_photon_paths(settings);
     if (settings.reuse && settings.method == Method::localized && solution.photon_paths)
-        solution.static_frame = segment_static_frame(scene, tracer, segment, solution, settings.photon,
-                                                     settings.localized, double(memory_available().bytes));
+        solution.static_frame =
+            segment_static_frame(scene, tracer, segment, solution, settings.photon, settings.localized,
+                                 double(memory_available().bytes), analysis_layers(settings));
     return solution;
 }
 
@@ -256,7 +262,7 @@ RenderedFrame render_frame(const RenderSettings& settings, const Scene& scene, R
                            const StaticSolution* solution, const CameraSeenSides* seen, int frame) {
     const PlacedFrame placed(scene, tracer, bsdfs, frame);
     const MethodInfo& info = method_info(settings.method);
-    RenderedFrame rendered = info.render_frame(placed.context(), solution, settings);
+    RenderedFrame rendered = info.render_frame(placed.context(), solution, settings, analysis_layers(settings));
     keep_chosen_layers(rendered, info, settings.output.layers);
     if (rendered.stats && seen)
         rendered.stats->distant_photons_inside = distant_photons_inside(placed.context(), *seen).value_or(-1);

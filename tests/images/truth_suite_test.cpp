@@ -131,7 +131,8 @@ Rendered render_frame(const Case& c) {
     if (info.has_static_pass)
         solution = StaticSolution{run_segment_pass(scene, tracer, scene.segment_of(frame_number), settings.photon)};
     const PlacedFrame frame(scene, tracer, bsdfs, frame_number);
-    RenderedFrame rendered = info.render_frame(frame.context(), solution ? &*solution : nullptr, settings);
+    RenderedFrame rendered =
+        info.render_frame(frame.context(), solution ? &*solution : nullptr, settings, AnalysisLayers::made);
     // Every channel of every layer finite (what the writer would otherwise replace by 0).
     EXPECT_EQ(replace_non_finite(rendered.beauty, rendered.layers).count, 0);
     Rendered out{std::move(rendered.beauty), emitter_mask(frame.context()), PixelMask(80 * 60, 0)};

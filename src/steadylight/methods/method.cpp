@@ -66,27 +66,31 @@ RenderedFrame rendered(Method method, Frame&& frame, const std::vector<LayerOf<s
 }
 
 RenderedFrame render_localized(const FrameContext& context, const StaticSolution* solution,
-                               const MethodSettings& settings) {
-    return rendered(Method::localized,
-                    run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::corrected),
-                    localized_layers);
+                               const MethodSettings& settings, AnalysisLayers analysis) {
+    return rendered(
+        Method::localized,
+        run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::corrected, analysis),
+        localized_layers);
 }
 
-RenderedFrame render_frozen(const FrameContext& context, const StaticSolution* solution,
-                            const MethodSettings& settings) {
-    return rendered(Method::frozen,
-                    run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::frozen),
-                    localized_layers);
+RenderedFrame render_frozen(const FrameContext& context, const StaticSolution* solution, const MethodSettings& settings,
+                            AnalysisLayers analysis) {
+    return rendered(
+        Method::frozen,
+        run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::frozen, analysis),
+        localized_layers);
 }
 
-RenderedFrame render_photon(const FrameContext& context, const StaticSolution* solution,
-                            const MethodSettings& settings) {
+// Its one analysis layer, the records' picture, costs next to nothing: always made.
+RenderedFrame render_photon(const FrameContext& context, const StaticSolution* solution, const MethodSettings& settings,
+                            AnalysisLayers) {
     return rendered(Method::photon,
                     render_photon_mapped(context, settings.photon, solution ? solution->photon_paths.get() : nullptr),
                     photon_layers);
 }
 
-RenderedFrame render_path(const FrameContext& context, const StaticSolution*, const MethodSettings& settings) {
+RenderedFrame render_path(const FrameContext& context, const StaticSolution*, const MethodSettings& settings,
+                          AnalysisLayers) {
     return rendered(Method::path, render_path_traced(context, settings.path), path_layers);
 }
 

@@ -18,6 +18,7 @@
 #include "steadylight/passes/localized_settings.h"
 #include "steadylight/passes/photon_mapping_settings.h"
 #include "steadylight/passes/segment_cache.h"
+#include "steadylight/passes/shading_pass.h"
 #include "steadylight/shading/frame_context.h"
 
 namespace steadylight {
@@ -61,9 +62,10 @@ struct RenderedFrame {
 };
 
 /// Renders one frame; `solution` is the segment's static solution for a method with a static
-/// pass, else null.
+/// pass, else null. With AnalysisLayers::left_out the method may leave its analysis layers
+/// empty (they are not written).
 using RenderFrameFunction = RenderedFrame (*)(const FrameContext& context, const StaticSolution* solution,
-                                              const MethodSettings& settings);
+                                              const MethodSettings& settings, AnalysisLayers analysis);
 
 struct MethodInfo {
     Method method;

@@ -73,8 +73,8 @@ TEST(Methods, FramesHaveTheTablesLayersAndStatistics) {
     const PreparedFrame frame(scene, 0);
     for (const MethodInfo& info : methods()) {
         settings.method = info.method;
-        const RenderedFrame rendered =
-            info.render_frame(frame.context(), info.has_static_pass ? &solution : nullptr, settings);
+        const RenderedFrame rendered = info.render_frame(frame.context(), info.has_static_pass ? &solution : nullptr,
+                                                         settings, AnalysisLayers::made);
         EXPECT_EQ(rendered.beauty.width, 8);
         std::vector<std::string_view> names;
         for (const NamedImage& layer : rendered.layers) {

@@ -40,7 +40,7 @@ RenderedFrame render(const Scene& scene, Method method) {
         solution.emplace(StaticSolution{run_segment_pass(scene, tracer, {0, 0}, settings.photon)});
     }
     const PreparedFrame frame(scene, 0);
-    return info.render_frame(frame.context(), solution ? &*solution : nullptr, settings);
+    return info.render_frame(frame.context(), solution ? &*solution : nullptr, settings, AnalysisLayers::made);
 }
 
 /// The pixel where the camera sees world point `p`.

@@ -118,16 +118,18 @@ float influence_at(const LocalizedLighting& lighting, int x, int y) {
 }
 
 /// What a frame that reuses a static frame's pixels computes for them anew: a reused pixel's
-/// influence layer, and the indirect light of a pixel whose corrected records changed.
-void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting) {
+/// influence layer (when the analysis layers are made), and the indirect light of a pixel whose
+/// corrected records changed.
+void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting, AnalysisLayers analysis) {
     // A reused pixel's influence layer: what its camera rays that reached a diffuse point would
     // have written (fill_layers), summed in the same order.
-    reuse.reused_layers = [&lighting](int x, int y, const PixelTrace& trace, PixelSums& sums) {
-        Rgb sum;
-        for (int ray = 0; ray < trace.surface_rays; ++ray)
-            sum += Rgb{1, 1, 1} * std::min(influence_at(lighting, x, y), max_influence_shown);
-        sums.extra[influence_slot] = sum;
-    };
+    if (analysis == AnalysisLayers::made)
+        reuse.reused_layers = [&lighting](int x, int y, const PixelTrace& trace, PixelSums& sums) {
+            Rgb sum;
+            for (int ray = 0; ray < trace.surface_rays; ++ray)
+                sum += Rgb{1, 1, 1} * std::min(influence_at(lighting, x, y), max_influence_shown);
+            sums.extra[influence_slot] = sum;
+        };
     // A pixel whose corrected records changed, and nothing else: L_t interpolated again at each of
     // its look-ups over the records it interpolated in the static frame (the corrected records
     // are the static ones, moved nowhere: the same records, the same weights), then each camera
@@ -157,7 +159,7 @@ void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting) {
 /// dynamic objects; the frame's own, or the static frame's (visibility static_only).
 ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting& lighting,
                             const PhotonMappingSettings& photon, const LocalizedSettings& localized,
-                            Visibility visibility, PixelSource* source, FrameStats& stats) {
+                            Visibility visibility, AnalysisLayers analysis, PixelSource* source, FrameStats& stats) {
     const float max_radius = photon.irradiance_estimate.max_radius;
     const PointFallbacks fallback = make_point_fallbacks(context, lighting.irradiance, max_radius, photon.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
@@ -178,7 +180,8 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
                                      weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel) : Rgb{},
                                      Rgb{}};
         });
-        if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
+        if (extra && analysis == AnalysisLayers::made)
+            fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
         return L_y * weight + L_t * (1 - weight);
     };
     ShadedFrame shaded = shade_frame(
@@ -186,7 +189,7 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         [&](const Ray& ray) {
             return gather_from_photons(context, lighting.irradiance, max_radius, visibility, ray).L;
         },
-        visibility, source);
+        visibility, source, analysis == AnalysisLayers::made ? slot_count : 0);
     stats.fallback_gathers += fallbacks;
     stats.gather_rays += gather_rays;
     return shaded;
@@ -196,7 +199,7 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
 
 std::optional<StaticFrame> make_static_frame(const FrameContext& context, const StaticSolution& solution,
                                              const PhotonMappingSettings& photon, const LocalizedSettings& localized,
-                                             double max_bytes) {
+                                             double max_bytes, AnalysisLayers analysis) {
     SL_CHECK(solution.photon_paths);
     const StaticPhotonPaths& paths = *solution.photon_paths;
     SL_CHECK(paths.irradiance);
@@ -210,7 +213,7 @@ std::optional<StaticFrame> make_static_frame(const FrameContext& context, const 
     FrameStats stats;
     shade_localized(
         context, {solution.cache, no_dynamic_cache, corrected_cache, no_influence, irradiance, paths.caustic.photons},
-        photon, localized, Visibility::static_only, &maker, stats);
+        photon, localized, Visibility::static_only, analysis, &maker, stats);
     if (!maker.fits()) return std::nullopt;
     maker.finish_frame();
     return out;
@@ -268,10 +271,12 @@ PixelPlan plan_frame_pixels(const FrameContext& context, const StaticFrame& base
 }
 
 /// Moves the shaded layers into the frame and adds the pictures of the records and of what was
-/// redone (`changed`: empty when the frame shaded every term of every pixel).
+/// redone (`changed`: empty when the frame shaded every term of every pixel), when asked for.
 void take_localized_layers(ShadedFrame& shaded, const Camera& camera, const IrradianceCache& static_cache,
-                           const IrradianceCache& dynamic_cache, std::vector<uint8_t> changed, LocalizedFrame& out) {
+                           const IrradianceCache& dynamic_cache, std::vector<uint8_t> changed, AnalysisLayers analysis,
+                           LocalizedFrame& out) {
     take_common_layers(shaded, out);
+    if (analysis == AnalysisLayers::left_out) return;
     out.influence = std::move(shaded.extra[influence_slot]);
     out.dynamic = std::move(shaded.extra[dynamic_slot]);
     out.L_y = std::move(shaded.extra[L_y_slot]);
@@ -288,7 +293,8 @@ void take_localized_layers(ShadedFrame& shaded, const Camera& camera, const Irra
 std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayTracer& tracer, const Segment& segment,
                                                         const StaticSolution& solution,
                                                         const PhotonMappingSettings& photon,
-                                                        const LocalizedSettings& localized, double available_bytes) {
+                                                        const LocalizedSettings& localized, double available_bytes,
+                                                        AnalysisLayers analysis) {
     if (distinct_views(scene, segment).size() != 1) {
         spdlog::info("pixel reuse: off for frames {}-{}: the camera moves", segment.first, segment.last);
         return nullptr;
@@ -318,7 +324,8 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayT
     const Stopwatch time;
     const Bsdfs bsdfs = make_bsdfs(scene);
     const PlacedFrame view(scene, tracer, bsdfs, segment.first);
-    std::optional<StaticFrame> made = make_static_frame(view.context(), solution, photon, localized, max_bytes);
+    std::optional<StaticFrame> made =
+        make_static_frame(view.context(), solution, photon, localized, max_bytes, analysis);
     if (!made) return off(max_bytes, "more than");
     const double bytes = double(made->bytes());
     spdlog::info("static frame: {}x{} pixels, {:.1f} MB ({:.0f} bytes a pixel), shaded in {:.2f} s", camera.width,
@@ -328,7 +335,7 @@ std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayT
 
 LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution& solution,
                               const PhotonMappingSettings& photon, const LocalizedSettings& localized,
-                              StaticCacheUse use) {
+                              StaticCacheUse use, AnalysisLayers analysis) {
     const Stopwatch total;
     const bool frozen = use == StaticCacheUse::frozen;
     LocalizedFrame out;
@@ -385,16 +392,19 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
                                      traced.irradiance, photons.caustic, frozen};
     PixelPlan plan;
     ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
-        if (!base) return shade_localized(context, lighting, photon, localized, Visibility::everything, nullptr, stats);
+        if (!base)
+            return shade_localized(context, lighting, photon, localized, Visibility::everything, analysis, nullptr,
+                                   stats);
         plan = plan_frame_pixels(context, *base, std::move(near_dynamic), traced, static_cache, changed_records,
                                  influence, photon, localized, stats);
         PixelReuse reuse(*base, plan.work);
-        set_reused_values(reuse, lighting);
-        return shade_localized(context, lighting, photon, localized, Visibility::everything, &reuse, stats);
+        set_reused_values(reuse, lighting, analysis);
+        return shade_localized(context, lighting, photon, localized, Visibility::everything, analysis, &reuse, stats);
     });
     stats.caustics_s = shaded.caustic_cpu_s;
 
-    take_localized_layers(shaded, context.frame.camera, static_cache, dynamic_cache, std::move(plan.changed), out);
+    take_localized_layers(shaded, context.frame.camera, static_cache, dynamic_cache, std::move(plan.changed), analysis,
+                          out);
     stats.irradiance_photons = traced.irradiance.computed();
     stats.irradiance_reused = traced.irradiance.reused();
     stats.irradiance_from_lists = traced.irradiance.from_static_lists();

@@ -40,10 +40,10 @@ struct LocalizedFrame {
 
 /// The static frame of pixel reuse (pixel_reuse.h): `context`'s view shaded with the dynamic
 /// objects removed, from the segment's static cache and photon paths (which must be there); none
-/// when it would take more than `max_bytes`.
+/// when it would take more than `max_bytes`. Its frames must ask for the same analysis layers.
 std::optional<StaticFrame> make_static_frame(const FrameContext& context, const StaticSolution& solution,
                                              const PhotonMappingSettings& photon, const LocalizedSettings& localized,
-                                             double max_bytes);
+                                             double max_bytes, AnalysisLayers analysis = AnalysisLayers::made);
 
 /// The static frame of a segment whose camera stands still, when it fits in
 /// static_frame_memory_share of `available_bytes` (pixel_reuse.h): refused up front when the
@@ -52,12 +52,14 @@ std::optional<StaticFrame> make_static_frame(const FrameContext& context, const 
 std::shared_ptr<const StaticFrame> segment_static_frame(const Scene& scene, RayTracer& tracer, const Segment& segment,
                                                         const StaticSolution& solution,
                                                         const PhotonMappingSettings& photon,
-                                                        const LocalizedSettings& localized, double available_bytes);
+                                                        const LocalizedSettings& localized, double available_bytes,
+                                                        AnalysisLayers analysis = AnalysisLayers::made);
 
 /// One frame; with the solution's static frame, when its view and lights are this frame's, only
 /// the pixels the dynamic objects can change are shaded again (not for StaticCacheUse::frozen).
+/// With AnalysisLayers::left_out the frame's layers after the four terms are left empty.
 LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution& solution,
                               const PhotonMappingSettings& photon, const LocalizedSettings& localized,
-                              StaticCacheUse use);
+                              StaticCacheUse use, AnalysisLayers analysis = AnalysisLayers::made);
 
 }  // namespace steadylight

@@ -455,6 +455,37 @@ TEST(PixelReuse, StaticFrameKeepsADiffuseRoomsPixelInAtMost150Bytes) {
     EXPECT_LE(double(ball.solution.static_frame->bytes()) / (32 * 24), 150);
 }
 
+// Without the analysis layers (`--layers terms`) a frame gives the same four terms and beauty,
+// bit for bit, reusing a static frame that was made without them and keeps less; the analysis
+// layers are left empty.
+TEST(PixelReuse, FramesWithoutAnalysisLayersGiveTheSameTerms) {
+    SolvedScene ball(scene_file("ball", 48, 36));
+    const std::vector<int> frames = {1, ball.scene.frame_count() / 2};
+    std::vector<LocalizedFrame> full;
+    for (const int frame : frames) full.push_back(ball.render(frame));
+    const size_t full_bytes = ball.solution.static_frame->bytes();
+    {
+        const PlacedFrame view(ball.scene, ball.tracer, ball.bsdfs, 0);
+        ball.solution.static_frame = std::make_shared<const StaticFrame>(
+            make_static_frame(view.context(), ball.solution, ball.settings, {}, 1e12, AnalysisLayers::left_out)
+                .value());
+    }
+    EXPECT_LT(ball.solution.static_frame->bytes(), full_bytes);
+    for (size_t i = 0; i < frames.size(); ++i) {
+        const PlacedFrame placed(ball.scene, ball.tracer, ball.bsdfs, frames[i]);
+        const LocalizedFrame terms = run_frame_pass(placed.context(), ball.solution, ball.settings, {},
+                                                    StaticCacheUse::corrected, AnalysisLayers::left_out);
+        EXPECT_GT(terms.stats.pixels_reused + terms.stats.pixels_looked_up_again, 48 * 36 / 2) << frames[i];
+        for (Image LocalizedFrame::*layer :
+             {&LocalizedFrame::beauty, &LocalizedFrame::direct, &LocalizedFrame::indirect, &LocalizedFrame::caustic,
+              &LocalizedFrame::specular})
+            EXPECT_TRUE((terms.*layer).pixels == (full[i].*layer).pixels) << frames[i];
+        for (Image LocalizedFrame::*layer : {&LocalizedFrame::L_y, &LocalizedFrame::L_t, &LocalizedFrame::influence,
+                                             &LocalizedFrame::indirect_static, &LocalizedFrame::static_records})
+            EXPECT_TRUE((terms.*layer).pixels.empty() && !(full[i].*layer).pixels.empty()) << frames[i];
+    }
+}
+
 // Where the static frame would take more than its share of the memory available, frames shade
 // every pixel: it is refused up front when the part every pixel takes would not fit, and
 // dropped when it grows past its share while it is made.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/rng.h"
 #include "steadylight/base/sampling.h"
@@ -333,12 +334,13 @@ void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
                         const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, Visibility visibility,
-                        PixelSource* source) {
+                        PixelSource* source, int extra_layers) {
+    SL_CHECK(extra_layers >= 0 && extra_layers <= max_extra_layers);
     const Camera& camera = context.frame.camera;
     ShadedFrame out;
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular})
         *image = Image(camera.width, camera.height);
-    for (Image& image : out.extra) image = Image(camera.width, camera.height);
+    for (int e = 0; e < extra_layers; ++e) out.extra[size_t(e)] = Image(camera.width, camera.height);
     if (camera.transparent_background) out.alpha = Image(camera.width, camera.height);
     const int n = settings.samples_per_pixel;
     const Shader shader(context, settings, caustic, indirect, reflected, visibility);
@@ -388,7 +390,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                 out.specular.at(x, y) = sum.specular * inv_n;
                 out.beauty.at(x, y) = sum.sum() * inv_n;
                 if (out.alpha) out.alpha->at(x, y) = Rgb{1, 1, 1} * (sum.covered * inv_n);
-                for (int e = 0; e < max_extra_layers; ++e) out.extra[size_t(e)].at(x, y) = sum.extra[size_t(e)] * inv_n;
+                for (int e = 0; e < extra_layers; ++e) out.extra[size_t(e)].at(x, y) = sum.extra[size_t(e)] * inv_n;
             }
     });
     out.caustic_cpu_s = shader.caustic_cpu_s();

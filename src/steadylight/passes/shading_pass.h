@@ -40,6 +40,11 @@ constexpr int shading_tile_size = 16;
 constexpr int max_extra_layers = 5;
 using ExtraLayers = std::array<Rgb, max_extra_layers>;
 
+/// Whether a frame computes its method's analysis layers (its records, influence, estimates:
+/// the pictures of how it worked, `--layers all`), or may leave them empty because the files
+/// will not hold them.
+enum class AnalysisLayers { made, left_out };
+
 /// Indirect irradiance found for a pixel's earlier camera rays, so that its later rays landing
 /// on the same surface close by can reuse it: the cache's indirect light varies over several
 /// pixels (records reach at least CacheSettings::min_spacing_px), so one look-up serves the
@@ -179,15 +184,17 @@ struct ShadedFrame {
     /// With a transparent background (Camera::transparent_background): the share of each
     /// pixel's camera rays that met a surface, grey. The colours are then premultiplied by it.
     std::optional<Image> alpha;
-    std::array<Image, max_extra_layers> extra;
-    double caustic_cpu_s = 0;  // time in caustic estimates, summed over threads
+    std::array<Image, max_extra_layers> extra;  // the first `extra_layers` of shade_frame(); the rest empty
+    double caustic_cpu_s = 0;                   // time in caustic estimates, summed over threads
 };
 
 /// Shades every pixel of the frame, seeing what `visibility` allows (static_only: pixel reuse's
-/// static frame), or, with a `source`, the part of each pixel it asks for.
+/// static frame), or, with a `source`, the part of each pixel it asks for. The method's own
+/// layers are pictured for its first `extra_layers` slots (ExtraLayers) only.
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
                         const IndirectIrradiance& indirect, const ReflectedRadiance& reflected,
-                        Visibility visibility = Visibility::everything, PixelSource* source = nullptr);
+                        Visibility visibility = Visibility::everything, PixelSource* source = nullptr,
+                        int extra_layers = 0);
 
 /// Moves the shading pass's common layers into a frame that has members of the same names.
 template <class FrameImages>
