@@ -4,12 +4,12 @@
 # writing included, as a user's first run): the whole run's wall time and their ratio. Error
 # against converged references is quality_bench's. Prints, asserts nothing.
 #   bash bench/methods_bench.sh [SCENE:FRAMES:SIZE[:LAYERS]...]
-#       default: ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960; LAYERS is --layers for
-#       both methods (all when left out).
+#       default: ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960 ball:0-19:1280x960:terms;
+#       LAYERS is --layers for both methods (all when left out).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=("$@")
-[ ${#runs[@]} -gt 0 ] || runs=(ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960)
+[ ${#runs[@]} -gt 0 ] || runs=(ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960 ball:0-19:1280x960:terms)
 [ -x build/steadylight ] || bash scripts/build.sh
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
