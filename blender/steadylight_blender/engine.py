@@ -20,7 +20,7 @@ from .render_run import RunFailed
 from .scene_export import resolution
 
 # The AOV layers of each method, in the order steadylight writes them, and their channels
-# (methods/method.cpp; tests/blender/addon_test.py checks them against steadylight's EXRs).
+# (methods/method.cpp; tests/blender/check_passes.py checks them against steadylight's EXRs).
 LOCALIZED_PASSES = [("direct", 3), ("indirect", 3), ("caustic", 3), ("specular", 3), ("indirect_static", 3),
                     ("L_y", 3), ("L_t", 3), ("influence", 1), ("dynamic", 1), ("static_records", 1),
                     ("dynamic_records", 1), ("changed", 1)]
@@ -30,6 +30,16 @@ PASSES = {
     "photon": [("direct", 3), ("indirect", 3), ("caustic", 3), ("specular", 3), ("records", 1)],
     "path": [],
 }
+# The four terms of the light, which sum to Combined; a method's other layers are its analysis
+# layers, which `--layers terms` leaves out (properties.py LAYERS).
+TERMS = ("direct", "indirect", "caustic", "specular")
+
+
+def passes(method, layers):
+    """The passes beyond Combined of `method`'s frames rendered with `--layers layers`."""
+    if layers == "beauty":
+        return []
+    return [(name, channels) for name, channels in PASSES[method] if layers == "all" or name in TERMS]
 
 # The render's job (job.py), shared by the engines Blender makes for its frames.
 current = {"job": None, "copy": None, "error": None}
@@ -77,7 +87,7 @@ class SteadylightRenderEngine(bpy.types.RenderEngine):
 
     def update_render_passes(self, scene=None, renderlayer=None):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
-        for name, channels in PASSES[scene.steadylight.method]:
+        for name, channels in passes(scene.steadylight.method, scene.steadylight.layers):
             if channels == 3:
                 self.register_pass(scene, renderlayer, name, 3, "RGB", "COLOR")
             else:

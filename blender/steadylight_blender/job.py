@@ -106,8 +106,8 @@ def export_copy(copy_path, scene_name, folder, name):
 
 def render_options(scene, view_layer):
     s = scene.steadylight
-    # Every layer: the engine registers a pass for each of the method's layers.
-    options = ["--method", s.method, "--exr-type", "float", "--layers", "all", "--blender-view-layer", view_layer,
+    # The engine registers a pass for each layer these write (engine.passes).
+    options = ["--method", s.method, "--exr-type", "float", "--layers", s.layers, "--blender-view-layer", view_layer,
                "--photons", str(s.photons), "--cache-accuracy", f"{s.cache_accuracy:g}"]
     if s.samples > 0:
         options += ["--spp", str(s.samples)]

@@ -8,9 +8,18 @@ METHODS = [
     ("path", "Path tracing", "Path-traced ground truth (slow)"),
 ]
 
+# steadylight's --layers: which AOV layers it computes and writes, each a pass (engine.py).
+LAYERS = [
+    ("all", "All", "The terms of the light and the method's analysis layers (its records, influence, estimates)"),
+    ("terms", "Light Terms", "Direct, indirect, caustic and specular light only: a production render, "
+                             "faster and with smaller files"),
+    ("beauty", "Combined Only", "No passes beyond Combined"),
+]
+
 
 class SteadylightSettings(bpy.types.PropertyGroup):
     method: bpy.props.EnumProperty(name="Method", items=METHODS, default="localized")
+    layers: bpy.props.EnumProperty(name="Passes", items=LAYERS, default="all")
     samples: bpy.props.IntProperty(
         name="Samples", default=0, min=0, max=1048576,
         description="Camera rays per pixel; 0: the method's default (16, or 64 for path tracing)")

@@ -18,6 +18,8 @@ class RENDER_PT_steadylight(bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.prop(settings, "method")
+        if settings.method != "path":
+            layout.prop(settings, "layers")
         layout.prop(settings, "samples")
         if settings.method != "path":
             layout.prop(settings, "photons")

@@ -7,7 +7,8 @@
 #   pixel for pixel (Blender's multilayer EXR output read back);
 # - steadylight's EXRs from the add-on's run are byte for byte the command line's render of the
 #   same export with the same options;
-# - the passes the add-on registers are the layers of every method (check_passes.py);
+# - the passes the add-on registers are the layers of every method and choice of Passes
+#   (check_passes.py), and with Passes set to Light Terms a frame holds the four terms only;
 # - worlds (an HDRI, Blender's sky) and round lamps export as steadylight reads them
 #   (export_variants.py);
 # - a transparent film gives Combined an alpha of 0 where the world is seen;
@@ -112,6 +113,24 @@ alpha = exr_file.read_exr(sys.argv[1])[0]["ViewLayer.Combined.A"]
 see_world = sum(a == 0 for a in alpha)
 assert 50 < see_world < len(alpha) / 2 and max(alpha) == 1, f"{see_world} pixels of alpha 0, max {max(alpha)}"
 print(f"a transparent film: alpha 0 at the {see_world} pixels that see the sky")
+PY
+
+# Passes > Light Terms: steadylight renders with --layers terms, and Blender's frame holds
+# Combined and the four terms of the light, no analysis pass.
+blender -b "$out/room.blend" --factory-startup --addons steadylight_blender \
+  --python-expr "import bpy; bpy.context.scene.steadylight.layers = 'terms'" -E STEADYLIGHT \
+  -o "$out/terms/room_####" -F OPEN_EXR_MULTILAYER -f 2 > "$out/terms.log" 2>&1
+grep -q -- "--layers terms " "$out"/room_steadylight/Scene_*/steadylight_blender.log \
+  || { tail -20 "$out/terms.log"; echo "Light Terms did not render with --layers terms"; exit 1; }
+here=$here python3 - "$out/terms/room_0002.exr" <<'PY'
+import os, sys
+sys.path.insert(0, os.environ["here"])
+import exr_file
+channels = exr_file.read_exr(sys.argv[1])[0]
+passes = sorted({name.split(".")[1] for name in channels})
+assert passes == ["Combined", "caustic", "direct", "indirect", "specular"], passes
+assert max(channels["ViewLayer.direct.R"]) > 0, "the direct pass is empty"
+print(f"Passes > Light Terms: the frame holds {', '.join(passes)}")
 PY
 
 # A steadylight older than the add-on needs.
