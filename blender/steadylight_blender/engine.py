@@ -41,6 +41,7 @@ def passes(method, layers):
         return []
     return [(name, channels) for name, channels in PASSES[method] if layers == "all" or name in TERMS]
 
+
 # The render's job (job.py), shared by the engines Blender makes for its frames.
 current = {"job": None, "copy": None, "error": None}
 
