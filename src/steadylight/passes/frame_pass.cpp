@@ -180,8 +180,7 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
                                      weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel) : Rgb{},
                                      Rgb{}};
         });
-        if (extra && analysis == AnalysisLayers::made)
-            fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
+        if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
         return L_y * weight + L_t * (1 - weight);
     };
     ShadedFrame shaded = shade_frame(

@@ -65,13 +65,15 @@ void record_look_up(const PixelSample& pixel, const Bsdf& bsdf, Rgb albedo_over_
 class Shader {
 public:
     Shader(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
-           const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, Visibility visibility)
+           const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, Visibility visibility,
+           int extra_layers)
         : m_context(context),
           m_settings(settings),
           m_caustic(caustic),
           m_indirect(indirect),
           m_reflected(reflected),
-          m_visibility(visibility) {}
+          m_visibility(visibility),
+          m_extra_layers(extra_layers) {}
 
     Components shade(const Ray& ray, int depth, Emission emission, const PixelSample& pixel, const LightStrata& strata,
                      Pcg32& rng) const;
@@ -97,6 +99,7 @@ private:
     const IndirectIrradiance& m_indirect;
     const ReflectedRadiance& m_reflected;
     const Visibility m_visibility;  // static_only: the static frame, with the dynamic objects removed
+    const int m_extra_layers;       // how many of the method's own layers shade_frame() pictures
     mutable std::atomic<long> m_caustic_ns = 0;
 };
 
@@ -170,7 +173,7 @@ void Shader::shade_diffuse(const SurfacePoint& sp, const OrthonormalBasis& basis
     // Textures multiply here, after the cache's interpolation: they are never blurred by it.
     const Rgb albedo_over_pi = bsdf.diffuse_reflectance(wo) * inv_pi;
     if (!pixel.skip_direct) c.direct += direct_light(sp, basis, bsdf, wo, strata, pixel);
-    c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 ? &c.extra : nullptr);
+    c.indirect = albedo_over_pi * m_indirect(sp, sp.ns, pixel, depth == 0 && m_extra_layers > 0 ? &c.extra : nullptr);
     if (depth == 0 && pixel.recorder) record_look_up(pixel, bsdf, albedo_over_pi);
     // A diffuse point reads the caustic map, an empty one too: a frame's may not be empty.
     if (pixel.recorder) pixel.recorder->add_flags(pixel.pixel_index, PixelRecorder::reads_caustics);
@@ -343,7 +346,7 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
     for (int e = 0; e < extra_layers; ++e) out.extra[size_t(e)] = Image(camera.width, camera.height);
     if (camera.transparent_background) out.alpha = Image(camera.width, camera.height);
     const int n = settings.samples_per_pixel;
-    const Shader shader(context, settings, caustic, indirect, reflected, visibility);
+    const Shader shader(context, settings, caustic, indirect, reflected, visibility, extra_layers);
     PixelRecorder* const recorder = source ? source->recorder() : nullptr;
     const float inv_n = 1.0f / float(n);
     parallel_for_tiles(camera.width, camera.height, shading_tile_size, [&](int x0, int y0, int x1, int y1) {

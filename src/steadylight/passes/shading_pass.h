@@ -169,8 +169,9 @@ PixelMemo::Values remembered(PixelMemo* memo, float reach, const SurfacePoint& s
 }
 
 /// Indirect irradiance at diffuse point `sp` with normal `n` (facing the viewer), for a camera
-/// ray of `pixel`. `extra` is non-null for the points the camera sees directly: the method adds
-/// its layers there (each ray's values are averaged over the pixel's rays).
+/// ray of `pixel`. `extra` is non-null for the points the camera sees directly when the frame
+/// pictures the method's layers (shade_frame's `extra_layers`): the method adds its layers there
+/// (each ray's values are averaged over the pixel's rays).
 using IndirectIrradiance =
     std::function<Rgb(const SurfacePoint& sp, Vec3 n, const PixelSample& pixel, ExtraLayers* extra)>;
 
