@@ -3,11 +3,13 @@
 // localized method makes it, and correct_static_cache run several times over it. Prints the best
 // and the median time of the runs (whole runs of the renderer move by a tenth from run to run on
 // a shared machine; a phase of 0.03 s inside them tells little), the records, the dynamic
-// photons, what a record reads (its photons within the finest disc that reads them one by one
-// and the cells within the coarsest), how far the correction from cells is from the one of
-// every photon one by one (the RMS over the records of their difference, over the RMS of the
-// correction), and a checksum of the corrected records (the sum of their irradiance) to tell a
-// change of the correction that is exact from one that is not. Asserts nothing.
+// photons, the points the correction is estimated at, what a point reads (its photons within the
+// finest disc that reads them one by one and the cells within the coarsest), how far the
+// correction from cells is from the one of every photon one by one (the RMS over the points of
+// their difference, over the RMS of the correction), how far the records' change taken from the
+// points is from each record's own estimate, and a checksum of the corrected records (the sum of
+// their irradiance) to tell a change of the correction that is exact from one that is not.
+// Asserts nothing.
 // Run: build/correction_bench [--scenes ball,table] [--frames N] [--size WxH] [--runs N]
 #include <algorithm>
 #include <cmath>
@@ -27,35 +29,49 @@ namespace {
 
 using Options = SceneBenchOptions;
 
-/// Per record, the photons within the finest disc that reads them one by one and the cells within
-/// the coarsest: what a record with every level reads (an upper bound: a record with fewer reads
+/// Per point, the photons within the finest disc that reads them one by one and the cells within
+/// the coarsest: what a point with every level reads (an upper bound: a point with fewer reads
 /// less).
-double read_per_record(const IrradianceCache& cache, const CorrectionPhotons& photons,
-                       const CorrectionSettings& settings) {
+double read_per_point(const IrradianceCache& cache, const CorrectionPoints& points, const CorrectionPhotons& photons,
+                      const CorrectionSettings& settings) {
     const float coarsest = level_radius(settings, settings.levels - 1);
     const float one_by_one = level_radius(settings, first_summed_level(settings) - 1);
     std::vector<Neighbour> found;
     double sum = 0;
-    for (const IrradianceRecord& record : cache.records()) {
+    for (size_t j = 0; j < points.size(); ++j) {
+        const IrradianceRecord& record = cache.records()[points.record(j)];
         photons.map().within(record.p, one_by_one, found);
         sum += double(found.size());
         photons.clusters_within(record.p, coarsest, found);
         sum += double(found.size());
     }
-    return cache.records().empty() ? 0.0 : sum / double(cache.records().size());
+    return points.size() == 0 ? 0.0 : sum / double(points.size());
 }
 
-/// The RMS over the records of the correction from cells less the one of every photon one by one,
+/// The RMS over the points of the correction from cells less the one of every photon one by one,
 /// over the RMS of the latter (luminance).
-double clustering_difference(const IrradianceCache& cache, const PhotonMap& dynamic, const CorrectionSettings& settings,
-                             const std::vector<DiscProbes>& probes) {
+double clustering_difference(const IrradianceCache& cache, const CorrectionPoints& points, const PhotonMap& dynamic,
+                             const CorrectionSettings& settings) {
     const CorrectionPhotons clustered(dynamic, settings), one_by_one(dynamic, settings, 0);
     double difference2 = 0, correction2 = 0;
+    for (size_t j = 0; j < points.size(); ++j) {
+        const IrradianceRecord& record = cache.records()[points.record(j)];
+        const double c = luminance(correction_at(clustered, record.p, record.n, settings, points.probes(j)));
+        const double e = luminance(correction_at(one_by_one, record.p, record.n, settings, points.probes(j)));
+        difference2 += (c - e) * (c - e), correction2 += e * e;
+    }
+    return correction2 > 0 ? std::sqrt(difference2 / correction2) : 0.0;
+}
+
+/// The RMS over the records of their change taken from the points less their change estimated at
+/// each record (`every_record`: points at every record), over the RMS of the latter (luminance).
+double points_difference(const IrradianceCache& cache, const IrradianceCache& from_points,
+                         const IrradianceCache& every_record) {
+    double difference2 = 0, correction2 = 0;
     for (size_t i = 0; i < cache.records().size(); ++i) {
-        const IrradianceRecord& record = cache.records()[i];
-        const DiscProbes* discs = &probes[i * size_t(settings.levels)];
-        const double c = luminance(correction_at(clustered, record.p, record.n, settings, discs));
-        const double e = luminance(correction_at(one_by_one, record.p, record.n, settings, discs));
+        const double before = luminance(cache.records()[i].E);
+        const double c = luminance(from_points.records()[i].E) - before;
+        const double e = luminance(every_record.records()[i].E) - before;
         difference2 += (c - e) * (c - e), correction2 += e * e;
     }
     return correction2 > 0 ? std::sqrt(difference2 / correction2) : 0.0;
@@ -81,10 +97,13 @@ void run_scene(const std::string& name, const Options& options) {
     const StaticPhotonPaths* paths = traced_paths.get();
     const StaticSolution solution{run_segment_pass(scene, tracer, segment, photon, paths), 0, false, "", traced_paths};
 
+    CorrectionSettings at_every_record = settings;
+    at_every_record.point_spacing = 0;
+    const CorrectionPoints every_record;
     std::printf("\n%s, %dx%d, %ld static records, %d runs per frame\n", name.c_str(), options.width, options.height,
                 solution.records(), runs);
-    std::printf("%5s %10s %10s %12s %12s %12s %16s\n", "frame", "best ms", "median ms", "dyn.photons", "read/record",
-                "vs one by one", "checksum");
+    std::printf("%5s %10s %10s %12s %8s %12s %14s %12s %16s\n", "frame", "best ms", "median ms", "dyn.photons",
+                "points", "read/point", "vs one by one", "vs records", "checksum");
     const int frames = std::max(1, std::min(options.frames, scene.frame_count()));
     for (int i = 0; i < frames; ++i) {
         // Frames spread over the animation, the first one left out (nothing has moved yet).
@@ -95,20 +114,25 @@ void run_scene(const std::string& name, const Options& options) {
         const FramePhotons traced(context, photon, stats, paths, paths ? paths->irradiance.get() : nullptr,
                                   ChangedValues::carried, solution.compose_photons);
         const PhotonMap& dynamic = traced.maps.dynamic;
-        const std::vector<DiscProbes>& probes = solution.correction_coverage->probes(context, solution.cache, settings);
+        const CorrectionPoints& points = *solution.correction_points;
+        points.make(context, solution.cache, settings);
+        every_record.make(context, solution.cache, at_every_record);
         std::vector<double> seconds;
         double sum = 0;
         for (int run = 0; run < runs; ++run) {
             const Stopwatch time;
-            const IrradianceCache corrected = correct_static_cache(solution.cache, dynamic, settings, probes);
+            const IrradianceCache corrected = correct_static_cache(solution.cache, dynamic, settings, &points);
             seconds.push_back(time.elapsed_s());
             sum = checksum(corrected);
         }
         std::sort(seconds.begin(), seconds.end());
-        std::printf("%5d %10.2f %10.2f %12zu %12.0f %11.2f%% %16.9e\n", frame, 1e3 * seconds.front(),
-                    1e3 * seconds[seconds.size() / 2], dynamic.size(),
-                    read_per_record(solution.cache, CorrectionPhotons(dynamic, settings), settings),
-                    100 * clustering_difference(solution.cache, dynamic, settings, probes), sum);
+        const double vs_records =
+            points_difference(solution.cache, correct_static_cache(solution.cache, dynamic, settings, &points),
+                              correct_static_cache(solution.cache, dynamic, at_every_record, &every_record));
+        std::printf("%5d %10.2f %10.2f %12zu %8zu %12.0f %13.2f%% %11.2f%% %16.9e\n", frame, 1e3 * seconds.front(),
+                    1e3 * seconds[seconds.size() / 2], dynamic.size(), points.size(),
+                    read_per_point(solution.cache, points, CorrectionPhotons(dynamic, settings), settings),
+                    100 * clustering_difference(solution.cache, points, dynamic, settings), 100 * vs_records, sum);
     }
 }
 

@@ -204,7 +204,8 @@ std::optional<StaticFrame> make_static_frame(const FrameContext& context, const 
     SL_CHECK(paths.irradiance);
     const IrradiancePhotons& irradiance = *paths.irradiance;
     // Built as every frame builds L_t, so that its interpolations are the frame's bit for bit.
-    const IrradianceCache corrected_cache = correct_static_cache(solution.cache, PhotonMap{}, localized.correction, {});
+    const IrradianceCache corrected_cache =
+        correct_static_cache(solution.cache, PhotonMap{}, localized.correction, nullptr);
     const IrradianceCache no_dynamic_cache(photon.cache);
     const InfluenceMap no_influence;
     StaticFrame out;
@@ -377,11 +378,10 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     // L_t: the static records corrected by the dynamic map (the frozen baseline: as they are).
     std::vector<uint8_t> changed_records;
     const IrradianceCache own_corrected_cache = timed_phase("L_t", stats.correction_s, [&] {
-        return frozen ? IrradianceCache(photon.cache)
-                      : correct_static_cache(
-                            static_cache, photons.dynamic, localized.correction,
-                            solution.correction_coverage->probes(context, static_cache, localized.correction),
-                            &changed_records);
+        if (frozen) return IrradianceCache(photon.cache);
+        solution.correction_points->make(context, static_cache, localized.correction);
+        return correct_static_cache(static_cache, photons.dynamic, localized.correction,
+                                    solution.correction_points.get(), &changed_records);
     });
     const IrradianceCache& corrected_cache = frozen ? static_cache : own_corrected_cache;
 

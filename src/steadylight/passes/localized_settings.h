@@ -19,8 +19,12 @@ struct CorrectionSettings {
     int levels = 4;           // radius x 1, 2, 4, 8 by default
     float noise_sigmas = 3;   // a detail within this many standard errors of zero is noise: dropped
     float signal_sigmas = 5;  // beyond this many it is kept whole; in between, in proportion
+    /// Estimated at records this many finest radii apart at least, taken from there by the
+    /// records between (CorrectionPoints); 0: at every record.
+    float point_spacing = 0.25f;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CorrectionSettings, radius, levels, noise_sigmas, signal_sigmas)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CorrectionSettings, radius, levels, noise_sigmas, signal_sigmas,
+                                                point_spacing)
 
 struct LocalizedSettings {
     int influence_photons = 300;  // N nearest dynamic photons in the influence estimate (paper: 300)

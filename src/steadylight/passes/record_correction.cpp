@@ -10,6 +10,7 @@
 #include "steadylight/base/check.h"
 #include "steadylight/base/parallel.h"
 #include "steadylight/base/rng.h"
+#include "steadylight/photons/point_index.h"
 #include "steadylight/photons/surface_coverage.h"
 
 namespace steadylight {
@@ -41,29 +42,84 @@ float level_radius(const CorrectionSettings& settings, int level) { return setti
 
 int first_summed_level(const CorrectionSettings& settings) { return std::max(1, settings.levels - 2); }
 
-const std::vector<DiscProbes>& CorrectionCoverage::probes(const FrameContext& context, const IrradianceCache& cache,
-                                                          const CorrectionSettings& settings) const {
+void CorrectionPoints::make(const FrameContext& context, const IrradianceCache& cache,
+                            const CorrectionSettings& settings) const {
     std::call_once(m_once, [&] {
-        const SurfaceCoverage coverage = surface_coverage(context, Visibility::static_only);
         const std::vector<IrradianceRecord>& records = cache.records();
+        const float spacing = settings.point_spacing * settings.radius, reach = 2 * spacing;
+        // On the record's surface: a point within the reach, its normal within 18 degrees of the
+        // record's and no farther off the record's tangent plane than half the spacing (a table
+        // top takes nothing from the floor under it, nor a wall from the floor at its foot).
+        const auto on_surface_of = [&](const IrradianceRecord& record, const IrradianceRecord& point) {
+            return dot(record.n, point.n) >= 0.95f && std::abs(dot(point.p - record.p, record.n)) <= spacing / 2;
+        };
+        std::vector<Vec3> positions(records.size());
+        for (size_t i = 0; i < records.size(); ++i) positions[i] = records[i].p;
+        const PointIndex all(positions);
+        std::vector<uint8_t> is_point(records.size(), 0);
+        std::vector<Neighbour> found;
+        for (size_t i = 0; i < records.size(); ++i) {
+            if (spacing > 0) all.within(records[i].p, spacing * spacing, found);
+            is_point[i] =
+                spacing == 0 || std::none_of(found.begin(), found.end(), [&](const Neighbour& near) {
+                    return near.index < i && is_point[near.index] && on_surface_of(records[i], records[near.index]);
+                });
+            if (is_point[i]) m_records.push_back(uint32_t(i));
+        }
+
         const int levels = settings.levels;
         m_levels = levels;
-        m_probes.resize(records.size() * size_t(levels));
-        parallel_for_chunks(long(records.size()), 16, [&](long begin, long end) {
-            for (long i = begin; i < end; ++i)
+        const SurfaceCoverage coverage = surface_coverage(context, Visibility::static_only);
+        m_probes.resize(m_records.size() * size_t(levels));
+        parallel_for_chunks(long(m_records.size()), 16, [&](long begin, long end) {
+            for (long j = begin; j < end; ++j)
                 for (int l = 0; l < levels; ++l) {
-                    const size_t at = size_t(i) * size_t(levels) + size_t(l);
+                    const IrradianceRecord& record = records[m_records[size_t(j)]];
                     const float r = level_radius(settings, l);
                     // Probed as the photons are chosen: a surface within the slab counts, seen
                     // from its top (a step lower than the slab, such as stripes proud of a wall,
                     // does not hide the surface beyond).
                     const float slab = slab_half_width(r);
-                    m_probes[at] = coverage.probes(records[size_t(i)].p, records[size_t(i)].n, r, slab, slab, at);
+                    const uint64_t seed = uint64_t(m_records[size_t(j)]) * uint64_t(levels) + uint64_t(l);
+                    m_probes[size_t(j) * size_t(levels) + size_t(l)] =
+                        coverage.probes(record.p, record.n, r, slab, slab, seed);
                 }
         });
+
+        std::vector<Vec3> point_positions(m_records.size());
+        std::vector<uint32_t> point_of(records.size(), 0);
+        for (size_t j = 0; j < m_records.size(); ++j)
+            point_positions[j] = records[m_records[j]].p, point_of[m_records[j]] = uint32_t(j);
+        const PointIndex points(point_positions);
+        std::vector<std::vector<Taken>> taken(records.size());
+        parallel_for_chunks(long(records.size()), 256, [&](long begin, long end) {
+            std::vector<Neighbour> near;
+            for (long i = begin; i < end; ++i) {
+                std::vector<Taken>& out = taken[size_t(i)];
+                if (is_point[size_t(i)]) {
+                    out.push_back({point_of[size_t(i)], 1.0f});
+                    continue;
+                }
+                points.within(records[size_t(i)].p, reach * reach, near);
+                std::sort(near.begin(), near.end(), nearer_neighbour);
+                float sum = 0;
+                for (const Neighbour& point : near)
+                    if (on_surface_of(records[size_t(i)], records[m_records[point.index]])) {
+                        const float weight = 1 - point.distance2 / (reach * reach);
+                        if (weight > 0) out.push_back({point.index, weight}), sum += weight;
+                    }
+                SL_CHECK(sum > 0);  // the point that kept it from being one is among them
+                for (Taken& t : out) t.weight /= sum;
+            }
+        });
+        m_first_taken.resize(records.size() + 1);
+        for (size_t i = 0; i < records.size(); ++i) {
+            m_first_taken[i] = uint32_t(m_taken.size());
+            m_taken.insert(m_taken.end(), taken[i].begin(), taken[i].end());
+        }
+        m_first_taken[records.size()] = uint32_t(m_taken.size());
     });
     SL_CHECK_EQ(m_levels, settings.levels);
-    return m_probes;
 }
 
 float kernel_share(const DiscProbes& probes) {
@@ -240,19 +296,27 @@ Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const Correc
 }
 
 IrradianceCache correct_static_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
-                                     const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
+                                     const CorrectionSettings& settings, const CorrectionPoints* points,
                                      std::vector<uint8_t>* changed) {
     std::vector<IrradianceRecord> records = static_cache.records();
     if (changed) changed->assign(records.size(), 0);
     if (dynamic.size() > 0) {
-        SL_CHECK_EQ(probes.size(), records.size() * size_t(settings.levels));
+        SL_CHECK(points && points->record_count() == records.size());
         const CorrectionPhotons photons(dynamic, settings);
-        parallel_for_chunks(long(records.size()), 64, [&](long begin, long end) {
+        std::vector<Rgb> corrections(points->size());
+        parallel_for_chunks(long(points->size()), 64, [&](long begin, long end) {
+            for (long j = begin; j < end; ++j) {
+                const IrradianceRecord& r = records[points->record(size_t(j))];
+                corrections[size_t(j)] = correction_at(photons, r.p, r.n, settings, points->probes(size_t(j)));
+            }
+        });
+        parallel_for_chunks(long(records.size()), 256, [&](long begin, long end) {
             for (long i = begin; i < end; ++i) {
-                IrradianceRecord& r = records[size_t(i)];
-                const Rgb delta =
-                    correction_at(photons, r.p, r.n, settings, &probes[size_t(i) * size_t(settings.levels)]);
+                Rgb delta;
+                for (const CorrectionPoints::Taken& taken : points->taken(size_t(i)))
+                    if (corrections[taken.point] != Rgb{}) delta += corrections[taken.point] * taken.weight;
                 if (delta == Rgb{}) continue;  // the record as it is, bit for bit
+                IrradianceRecord& r = records[size_t(i)];
                 const Rgb E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g),
                                std::max(0.0f, r.E.b + delta.b)};
                 if (changed) (*changed)[size_t(i)] = E != r.E;

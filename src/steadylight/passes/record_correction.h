@@ -30,18 +30,23 @@
 //   nearer the centre, holds 3/4 of the Epanechnikov weight): by area, a disc half a radius from
 //   an edge read 9% too much. Levels whose disc has less than a quarter of the kernel's weight
 //   on the surface are no estimate of its change (a 2 m disc on a 0.3 m ball: the few photons on
-//   its top divided by a share of a few per cent made blotches): a record uses its levels up to
-//   the first such one, and one whose finest disc is such is not corrected (a small object near
-//   the moving one takes L_y, by the influence there);
+//   its top divided by a share of a few per cent made blotches): an estimate uses its levels up
+//   to the first such one, and one whose finest disc is such gives no change (a small object
+//   near the moving one takes L_y, by the influence there);
 // - the two coarsest levels read the photons summed by cells (CorrectionPhotons), the finer ones
 //   each photon: the coarse discs hold 15/16 of the photons a record reads. The kernel is a
 //   quadratic in a photon's position, so a cell wholly inside a disc sums exactly from its
 //   moments; a cell across the rim counts as its centroid. A record's own search then reaches a
-//   quarter as far. docs/localized.md ("A steady correction") has what it changed.
+//   quarter as far;
+// - it is estimated at points, records a quarter of the finest radius apart, and taken from there
+//   by the records between (CorrectionPoints): at production sizes the records stand a few
+//   centimetres apart, and the change is smooth over the finest radius.
+// docs/localized.md ("A steady correction") has what each of these changed.
 #pragma once
 
 #include <memory>
 #include <mutex>
+#include <span>
 #include <vector>
 
 #include "steadylight/irradiance/irradiance_cache.h"
@@ -52,19 +57,43 @@
 
 namespace steadylight {
 
-/// Which cells of each static record's discs (one per level) lie on its surface, from the static
-/// geometry alone, probed once on first use (thread-safe) and kept for every frame of the
-/// segment: a function of the segment, whichever frame asks first.
-class CorrectionCoverage {
+/// Where L_t is estimated, and how each static record takes it: the correction is smooth over its
+/// finest radius, while at production sizes the records are a few centimetres apart (25,800 on
+/// BALL at 1280x960), so it is estimated at *points*, records at least `point_spacing` finest
+/// radii apart (chosen in the records' order: a record is one unless a point already chosen lies
+/// within that spacing on its surface), with their discs' probes (which cells of each level's disc
+/// lie on the surface), and every other record takes the points within twice the spacing on its
+/// surface, weighted by an Epanechnikov kernel (the one that blocked it weighs at least 3/4). A
+/// point takes its own correction. Found from the static geometry and records alone, once, by
+/// the first frame that asks (thread-safe), and kept for the frames of the segment.
+class CorrectionPoints {
 public:
-    /// Record i's probes at level l are at [i * settings.levels + l].
-    const std::vector<DiscProbes>& probes(const FrameContext& context, const IrradianceCache& cache,
-                                          const CorrectionSettings& settings) const;
+    struct Taken {
+        uint32_t point;
+        float weight;  // a record's weights sum to 1
+    };
+
+    /// Chooses them for `cache`'s records, once (later calls must be for the same cache and settings).
+    void make(const FrameContext& context, const IrradianceCache& cache, const CorrectionSettings& settings) const;
+
+    size_t size() const { return m_records.size(); }
+    /// How many records they were made for.
+    size_t record_count() const { return m_first_taken.empty() ? 0 : m_first_taken.size() - 1; }
+    /// The record point j is, and its discs' probes, one per level.
+    uint32_t record(size_t point) const { return m_records[point]; }
+    const DiscProbes* probes(size_t point) const { return &m_probes[point * size_t(m_levels)]; }
+    /// The points record i takes its correction from.
+    std::span<const Taken> taken(size_t record) const {
+        return {m_taken.data() + m_first_taken[record], m_taken.data() + m_first_taken[record + 1]};
+    }
 
 private:
     mutable std::once_flag m_once;
-    mutable std::vector<DiscProbes> m_probes;
     mutable int m_levels = 0;
+    mutable std::vector<uint32_t> m_records;      // per point, ascending
+    mutable std::vector<DiscProbes> m_probes;     // point j's at level l at [j * levels + l]
+    mutable std::vector<uint32_t> m_first_taken;  // per record, and one past the last
+    mutable std::vector<Taken> m_taken;
 };
 
 /// The radius of level `level`'s disc: settings.radius at the finest, doubling per level.
@@ -115,12 +144,12 @@ private:
 Rgb correction_at(const CorrectionPhotons& dynamic, Vec3 p, Vec3 n, const CorrectionSettings& settings,
                   const DiscProbes* probes);
 
-/// L_t's cache, the corrected cache: the static records with correction_at added at each
-/// (negative results clamped to 0). `probes`
-/// from CorrectionCoverage (may be empty when `dynamic` is). `changed`, when given, gets a flag
+/// L_t's cache, the corrected cache: the static records with correction_at added, estimated at
+/// `points` (made for this cache and settings; may be null when `dynamic` is empty) and taken
+/// from there by every record (negative results clamped to 0). `changed`, when given, gets a flag
 /// per record: whether its irradiance changed.
 IrradianceCache correct_static_cache(const IrradianceCache& static_cache, const PhotonMap& dynamic,
-                                     const CorrectionSettings& settings, const std::vector<DiscProbes>& probes,
+                                     const CorrectionSettings& settings, const CorrectionPoints* points,
                                      std::vector<uint8_t>* changed = nullptr);
 
 }  // namespace steadylight

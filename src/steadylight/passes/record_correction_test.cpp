@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
 
 #include "steadylight/base/halton.h"
 #include "steadylight/base/rng.h"
@@ -206,9 +208,9 @@ TEST(RecordCorrection, RecordsAmongStripsProudOfTheSurfaceReadTheChangeThere) {
         const float y = StripedFloor::on_a_strip(x) ? 0.02f : 0.0f;
         for (int i = 0; i < 16; ++i)
             cache.insert({.p = {x, y, -1.5f + 0.2f * float(i)}, .n = up, .E = {10, 10, 10}, .radius = 0.1f});
-        const CorrectionCoverage coverage;
-        const std::vector<DiscProbes>& probes = coverage.probes(prepared.context(), cache, CorrectionSettings{});
-        const IrradianceCache corrected_cache = correct_static_cache(cache, map, CorrectionSettings{}, probes);
+        const CorrectionPoints points;
+        points.make(prepared.context(), cache, CorrectionSettings{});
+        const IrradianceCache corrected_cache = correct_static_cache(cache, map, CorrectionSettings{}, &points);
         double sum = 0;
         for (const IrradianceRecord& r : corrected_cache.records()) sum += luminance(r.E) - 10;
         EXPECT_NEAR(sum / 16, floor.change, 0.06 * std::abs(floor.change)) << "x = " << x;
@@ -222,6 +224,147 @@ TEST(RecordCorrection, PhotonsOffTheTangentPlaneDoNotCount) {
     EXPECT_EQ(correction(photons, {0, 0, 0}), Rgb{});
 }
 
+/// A floor and a table top 0.8 above it (x, z within 1 of 0), with records every 2 cm on both
+/// (on the top up to its edge x = 1) and along the table's side there, and photons of an even
+/// change on the floor alone.
+struct FloorAndTable {
+    static constexpr float spacing = 0.02f, table_height = 0.8f;
+    Scene scene;
+    IrradianceCache cache;
+    std::vector<Photon> photons = uniform_photons(40'000, -1e-3f);
+    double change = -1e-3 * 40'000 / 64;  // per unit area
+
+    FloorAndTable() : scene(make_desc()) {
+        for (int i = 0; i <= 60; ++i)
+            for (int j = 0; j <= 60; ++j) {
+                const float x = -0.6f + spacing * float(i), z = -0.6f + spacing * float(j);
+                cache.insert({.p = {x + 1.5f, 0, z}, .n = up, .E = {10, 10, 10}, .radius = 0.1f});
+                cache.insert({.p = {x + 0.4f, table_height, z}, .n = up, .E = {10, 10, 10}, .radius = 0.1f});
+                if (i < 2)
+                    cache.insert({.p = {1, table_height - 0.01f * float(i), z},
+                                  .n = {1, 0, 0},
+                                  .E = {10, 10, 10},
+                                  .radius = 0.1f});
+            }
+    }
+    enum Surface { floor, top, side };
+    static Surface surface(const IrradianceRecord& record) {
+        return record.n.x > 0.5f ? side : record.p.y > table_height / 2 ? top : floor;
+    }
+
+    static SceneDesc make_desc() {
+        SceneDesc desc = testing::make_empty_scene({0, 2, -5}, {0, 0, 0});
+        const int white = testing::add_material(desc, {});
+        testing::add_object(desc, make_quad({-4, 0, -4}, {0, 0, 8}, {8, 0, 0}), white);
+        testing::add_object(desc, make_box({0, table_height - 0.025f, 0}, {2, 0.05f, 2}), white);
+        return desc;
+    }
+};
+
+// The points: at least the spacing apart on a surface, a few of the records (a ninth of a grid
+// eight times finer in area than the spacing's), each taking its own correction; every other
+// record takes points on its own surface within twice the spacing (the table's top none on its
+// side), weights summing to 1, the nearest among them within the spacing.
+TEST(RecordCorrection, PointsAreSpacedAndEachRecordTakesThoseOnItsSurface) {
+    const FloorAndTable room;
+    const PreparedFrame prepared(room.scene, 0);
+    const CorrectionSettings settings;
+    const float spacing = settings.point_spacing * settings.radius;
+    const CorrectionPoints points;
+    points.make(prepared.context(), room.cache, settings);
+    const std::vector<IrradianceRecord>& records = room.cache.records();
+    EXPECT_GT(points.size(), records.size() / 20);
+    EXPECT_LT(points.size(), records.size() / 5);
+    std::vector<int> point_of(records.size(), -1);
+    for (size_t j = 0; j < points.size(); ++j) point_of[points.record(j)] = int(j);
+    for (size_t j = 1; j < points.size(); ++j) ASSERT_LT(points.record(j - 1), points.record(j));
+    for (size_t a = 0; a < points.size(); ++a)
+        for (size_t b = a + 1; b < points.size(); ++b) {
+            const IrradianceRecord &pa = records[points.record(a)], &pb = records[points.record(b)];
+            if (FloorAndTable::surface(pa) == FloorAndTable::surface(pb)) {
+                ASSERT_GT(length(pa.p - pb.p), spacing);
+            }
+        }
+    for (size_t i = 0; i < records.size(); ++i) {
+        const std::span<const CorrectionPoints::Taken> taken = points.taken(i);
+        ASSERT_FALSE(taken.empty());
+        if (point_of[i] >= 0) {
+            ASSERT_EQ(taken.size(), 1u);
+            EXPECT_EQ(taken[0].point, uint32_t(point_of[i]));
+            EXPECT_EQ(taken[0].weight, 1.0f);
+            continue;
+        }
+        float sum = 0, nearest = infinity;
+        for (const CorrectionPoints::Taken& t : taken) {
+            const IrradianceRecord& point = records[points.record(t.point)];
+            EXPECT_EQ(FloorAndTable::surface(point), FloorAndTable::surface(records[i]));
+            const float distance = length(point.p - records[i].p);
+            EXPECT_LT(distance, 2 * spacing);
+            EXPECT_GT(t.weight, 0);
+            sum += t.weight, nearest = std::min(nearest, distance);
+        }
+        EXPECT_NEAR(sum, 1, 1e-5);
+        EXPECT_LE(nearest, spacing);
+    }
+}
+
+// An even change on the floor: every floor record taken from the points reads it within 3%, and
+// in all no farther from it than the records' own estimates (spacing 0), the points bit for bit
+// those estimates; the table, which no photon reached, keeps its records bit for bit and unflagged.
+TEST(RecordCorrection, RecordsTakeAnEvenChangeFromThePoints) {
+    const FloorAndTable room;
+    const PreparedFrame prepared(room.scene, 0);
+    const PhotonMap map(room.photons, long(room.photons.size()));
+    const CorrectionSettings settings, at_every_record{.point_spacing = 0};
+    const CorrectionPoints points, every_record;
+    points.make(prepared.context(), room.cache, settings);
+    every_record.make(prepared.context(), room.cache, at_every_record);
+    ASSERT_EQ(every_record.size(), room.cache.records().size());
+    std::vector<uint8_t> changed;
+    const IrradianceCache corrected = correct_static_cache(room.cache, map, settings, &points, &changed);
+    const IrradianceCache estimated = correct_static_cache(room.cache, map, at_every_record, &every_record);
+    const std::vector<IrradianceRecord>& records = corrected.records();
+    for (size_t j = 0; j < points.size(); ++j) {
+        const size_t i = points.record(j);
+        EXPECT_EQ(std::memcmp(&records[i].E, &estimated.records()[i].E, sizeof(Rgb)), 0) << i;
+    }
+    double taken_error2 = 0, estimated_error2 = 0;
+    for (size_t i = 0; i < records.size(); ++i) {
+        if (FloorAndTable::surface(records[i]) != FloorAndTable::floor) {
+            EXPECT_EQ(std::memcmp(&records[i].E, &room.cache.records()[i].E, sizeof(Rgb)), 0) << i;
+            EXPECT_EQ(changed[i], 0);
+            continue;
+        }
+        const double taken = luminance(records[i].E) - 10, own = luminance(estimated.records()[i].E) - 10;
+        EXPECT_NEAR(taken, room.change, 0.03 * std::abs(room.change)) << i;
+        EXPECT_EQ(changed[i], 1);
+        taken_error2 += (taken - room.change) * (taken - room.change);
+        estimated_error2 += (own - room.change) * (own - room.change);
+    }
+    EXPECT_LE(taken_error2, estimated_error2);  // no farther from the change than each record's own estimate
+}
+
+// With a spacing of 0 every record is a point: each is corrected by its own estimate, bit for
+// bit correction_at there (the estimator before points).
+TEST(RecordCorrection, WithoutSpacingEveryRecordTakesItsOwnEstimate) {
+    const FloorAndTable room;
+    const PreparedFrame prepared(room.scene, 0);
+    const PhotonMap map(room.photons, long(room.photons.size()));
+    const CorrectionSettings settings{.point_spacing = 0};
+    const CorrectionPoints points;
+    points.make(prepared.context(), room.cache, settings);
+    const IrradianceCache corrected = correct_static_cache(room.cache, map, settings, &points);
+    const CorrectionPhotons photons(map, settings);
+    ASSERT_EQ(points.size(), room.cache.records().size());
+    for (size_t i = 0; i < points.size(); i += 7) {
+        const IrradianceRecord& r = room.cache.records()[i];
+        const Rgb delta = correction_at(photons, r.p, r.n, settings, points.probes(i));
+        const Rgb E = {std::max(0.0f, r.E.r + delta.r), std::max(0.0f, r.E.g + delta.g),
+                       std::max(0.0f, r.E.b + delta.b)};
+        EXPECT_EQ(std::memcmp(&corrected.records()[i].E, &E, sizeof(Rgb)), 0) << i;
+    }
+}
+
 // Without dynamic photons the records are the static ones bit for bit, and none is flagged.
 TEST(RecordCorrection, NoDynamicPhotonsLeaveTheRecordsAsTheyAre) {
     IrradianceCache cache;
@@ -229,7 +372,7 @@ TEST(RecordCorrection, NoDynamicPhotonsLeaveTheRecordsAsTheyAre) {
     cache.insert({.p = {1, 0, 0}, .n = up, .E = {0.1f, 0.2f, 0.3f}, .radius = 0.3f});
     std::vector<uint8_t> changed;
     const IrradianceCache corrected_cache =
-        correct_static_cache(cache, PhotonMap{}, CorrectionSettings{}, {}, &changed);
+        correct_static_cache(cache, PhotonMap{}, CorrectionSettings{}, nullptr, &changed);
     ASSERT_EQ(corrected_cache.records().size(), 2u);
     for (size_t i = 0; i < 2; ++i) {
         EXPECT_EQ(std::memcmp(&corrected_cache.records()[i].E, &cache.records()[i].E, sizeof(Rgb)), 0);

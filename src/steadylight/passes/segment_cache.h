@@ -28,8 +28,8 @@ struct StaticSolution {
     std::shared_ptr<const StaticPhotonPaths> photon_paths;  // null: frames trace all their photons
     bool compose_photons = true;  // false: frames trace all their photons and only tell photon_paths' from them
     std::shared_ptr<const StaticFrame> static_frame;  // null: frames shade every pixel
-    /// The records' disc shares for L_t's correction, made by the first frame that needs them.
-    std::shared_ptr<const CorrectionCoverage> correction_coverage = std::make_shared<CorrectionCoverage>();
+    /// Where L_t is estimated, made by the first frame that needs them.
+    std::shared_ptr<const CorrectionPoints> correction_points = std::make_shared<CorrectionPoints>();
     /// What the pixel centres see, made by the first frame that needs it (a still view only).
     std::shared_ptr<const KeptCentreRays> centre_rays = std::make_shared<KeptCentreRays>();
 
