@@ -66,19 +66,19 @@ RenderedFrame rendered(Method method, Frame&& frame, const std::vector<LayerOf<s
 }
 
 RenderedFrame render_localized(const FrameContext& context, const StaticSolution* solution,
-                               const MethodSettings& settings, AnalysisLayers analysis) {
-    return rendered(
-        Method::localized,
-        run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::corrected, analysis),
-        localized_layers);
+                               const MethodSettings& settings, AnalysisLayers analysis_layers) {
+    return rendered(Method::localized,
+                    run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::corrected,
+                                   analysis_layers),
+                    localized_layers);
 }
 
 RenderedFrame render_frozen(const FrameContext& context, const StaticSolution* solution, const MethodSettings& settings,
-                            AnalysisLayers analysis) {
-    return rendered(
-        Method::frozen,
-        run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::frozen, analysis),
-        localized_layers);
+                            AnalysisLayers analysis_layers) {
+    return rendered(Method::frozen,
+                    run_frame_pass(context, *solution, settings.photon, settings.localized, StaticCacheUse::frozen,
+                                   analysis_layers),
+                    localized_layers);
 }
 
 // Its one analysis layer, the records' picture, costs next to nothing: always made.
