@@ -261,8 +261,8 @@ struct FloorAndTable {
     }
 };
 
-// The points: at least the spacing apart on a surface, a few of the records (a ninth of a grid
-// eight times finer in area than the spacing's), each taking its own correction; every other
+// The points: at least the spacing apart on a surface, about a tenth of records 2 cm apart at
+// the default spacing (6.25 cm), each taking its own correction; every other
 // record takes points on its own surface within twice the spacing (the table's top none on its
 // side), weights summing to 1, the nearest among them within the spacing.
 TEST(RecordCorrection, PointsAreSpacedAndEachRecordTakesThoseOnItsSurface) {
