@@ -56,15 +56,18 @@ void CorrectionPoints::make(const FrameContext& context, const IrradianceCache& 
         std::vector<Vec3> positions(records.size());
         for (size_t i = 0; i < records.size(); ++i) positions[i] = records[i].p;
         const PointIndex all(positions);
-        std::vector<uint8_t> is_point(records.size(), 0);
+        constexpr int32_t not_a_point = -1;
+        std::vector<int32_t> point_of(records.size(), not_a_point);  // per record: which point it is
         std::vector<Neighbour> found;
         for (size_t i = 0; i < records.size(); ++i) {
             if (spacing > 0) all.within(records[i].p, spacing * spacing, found);
-            is_point[i] =
-                spacing == 0 || std::none_of(found.begin(), found.end(), [&](const Neighbour& near) {
-                    return near.index < i && is_point[near.index] && on_surface_of(records[i], records[near.index]);
-                });
-            if (is_point[i]) m_records.push_back(uint32_t(i));
+            const bool blocked = spacing > 0 && std::any_of(found.begin(), found.end(), [&](const Neighbour& near) {
+                                     return near.index < i && point_of[near.index] != not_a_point &&
+                                            on_surface_of(records[i], records[near.index]);
+                                 });
+            if (blocked) continue;
+            point_of[i] = int32_t(m_records.size());
+            m_records.push_back(uint32_t(i));
         }
 
         const int levels = settings.levels;
@@ -72,9 +75,9 @@ void CorrectionPoints::make(const FrameContext& context, const IrradianceCache& 
         const SurfaceCoverage coverage = surface_coverage(context, Visibility::static_only);
         m_probes.resize(m_records.size() * size_t(levels));
         parallel_for_chunks(long(m_records.size()), 16, [&](long begin, long end) {
-            for (long j = begin; j < end; ++j)
+            for (long j = begin; j < end; ++j) {
+                const IrradianceRecord& record = records[m_records[size_t(j)]];
                 for (int l = 0; l < levels; ++l) {
-                    const IrradianceRecord& record = records[m_records[size_t(j)]];
                     const float r = level_radius(settings, l);
                     // Probed as the photons are chosen: a surface within the slab counts, seen
                     // from its top (a step lower than the slab, such as stripes proud of a wall,
@@ -84,20 +87,19 @@ void CorrectionPoints::make(const FrameContext& context, const IrradianceCache& 
                     m_probes[size_t(j) * size_t(levels) + size_t(l)] =
                         coverage.probes(record.p, record.n, r, slab, slab, seed);
                 }
+            }
         });
 
         std::vector<Vec3> point_positions(m_records.size());
-        std::vector<uint32_t> point_of(records.size(), 0);
-        for (size_t j = 0; j < m_records.size(); ++j)
-            point_positions[j] = records[m_records[j]].p, point_of[m_records[j]] = uint32_t(j);
+        for (size_t j = 0; j < m_records.size(); ++j) point_positions[j] = records[m_records[j]].p;
         const PointIndex points(point_positions);
         std::vector<std::vector<Taken>> taken(records.size());
         parallel_for_chunks(long(records.size()), 256, [&](long begin, long end) {
             std::vector<Neighbour> near;
             for (long i = begin; i < end; ++i) {
                 std::vector<Taken>& out = taken[size_t(i)];
-                if (is_point[size_t(i)]) {
-                    out.push_back({point_of[size_t(i)], 1.0f});
+                if (point_of[size_t(i)] != not_a_point) {
+                    out.push_back({uint32_t(point_of[size_t(i)]), 1.0f});
                     continue;
                 }
                 points.within(records[size_t(i)].p, reach * reach, near);
