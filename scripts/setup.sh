@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libnanoflann-dev libtinygltf-dev libtinyobjloader-dev
-  libopenexr-dev zlib1g-dev libstb-dev libjpeg-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev
+  libopenexr-dev zlib1g-dev libisal-dev libstb-dev libjpeg-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev
   libgtest-dev libbenchmark-dev
   ffmpeg   # optional at run time: only `render --video` and its test (skipped without it) use it
   slurm-wlm munge   # the farm test's one-node Slurm cluster (tests/farm/); `submit` needs sbatch only

@@ -1,13 +1,14 @@
-// Writing finished frames: linear multi-layer EXR (OpenEXR, half or float) and 8-bit sRGB PNG
-// (zlib) through the view transform of view_transform.h. Each file is written under a temporary
-// name in the same folder and renamed into place, so an interrupted run never leaves a truncated
-// image behind.
+// Writing finished frames: linear multi-layer EXR (half or float, exr_encoder.h) and 8-bit sRGB
+// PNG through the view transform of view_transform.h, both deflated by deflate.h. Each file is written under a
+// temporary name in the same folder and renamed into place, so an interrupted run never leaves a truncated image
+// behind.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "steadylight/base/image.h"
+#include "steadylight/output/exr_encoder.h"
 #include "steadylight/output/view_transform.h"
 
 namespace steadylight {
@@ -25,10 +26,6 @@ struct ExrLayer {
     const Image* alpha = nullptr;
     std::string scalar_channel = "Y";  // Blender names a grey pass's channel X
 };
-
-/// How EXR channels are stored: 16-bit half (the default; enough for display-referred work
-/// and a third of the size) or 32-bit float.
-enum class ExrPixelType { half, float32 };
 
 /// "half" or "float"; throws InputError naming `option` otherwise.
 ExrPixelType parse_exr_pixel_type(const std::string& name, const std::string& option = "--exr-type");

@@ -1,0 +1,36 @@
+#include "steadylight/output/deflate.h"
+
+#include <isa-l/igzip_lib.h>
+#include <zlib.h>
+
+#include <cstdint>
+#include <limits>
+
+namespace steadylight {
+
+std::optional<std::vector<unsigned char>> deflate_zlib(const unsigned char* data, size_t size, size_t max_size) {
+    if (size > std::numeric_limits<uint32_t>::max() || max_size > std::numeric_limits<uint32_t>::max())
+        return std::nullopt;  // igzip counts in 32 bits; no block of ours comes near
+    // The level's working memory, kept by each thread that compresses.
+    thread_local std::vector<uint8_t> level_buffer(ISAL_DEF_LVL1_DEFAULT);
+    std::vector<unsigned char> out(max_size);
+    isal_zstream stream;
+    isal_deflate_stateless_init(&stream);
+    stream.level = 1;
+    stream.level_buf = level_buffer.data();
+    stream.level_buf_size = uint32_t(level_buffer.size());
+    stream.gzip_flag = IGZIP_ZLIB;
+    stream.end_of_stream = 1;
+    stream.flush = NO_FLUSH;
+    stream.next_in = const_cast<uint8_t*>(data);
+    stream.avail_in = uint32_t(size);
+    stream.next_out = out.data();
+    stream.avail_out = uint32_t(out.size());
+    if (isal_deflate_stateless(&stream) != COMP_OK) return std::nullopt;  // longer than max_size
+    out.resize(stream.total_out);
+    return out;
+}
+
+size_t deflate_zlib_bound(size_t size) { return compressBound(uLong(size)); }
+
+}  // namespace steadylight
