@@ -5,6 +5,8 @@
 #include "steadylight/irradiance/cache_builder.h"
 
 #include <algorithm>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 #include "steadylight/base/check.h"
@@ -32,35 +34,36 @@ int coarsest_spacing(int width, int height) {
     return spacing;
 }
 
-/// The pixels first visited at `spacing`, in pixel order: multiples of `spacing` that are not
-/// multiples of the coarser level's spacing (2 * spacing), unless this is the coarsest level.
-std::vector<Pixel> level_pixels(int width, int height, int spacing, bool coarsest) {
-    std::vector<Pixel> pixels;
-    for (int y = 0; y < height; y += spacing) {
-        for (int x = 0; x < width; x += spacing) {
-            const bool visited = !coarsest && x % (2 * spacing) == 0 && y % (2 * spacing) == 0;
-            if (!visited) pixels.push_back({x, y});
-        }
-    }
-    return pixels;
-}
-
-/// The pixels whose points need irradiance the cache does not cover yet, in pixel order.
-std::vector<Candidate> find_uncovered(const IrradianceCache& cache, const std::vector<Pixel>& pixels,
+/// The pixels of the image first visited at `spacing`, in pixel order, whose points need
+/// irradiance the cache does not cover yet: multiples of `spacing` that are not multiples of the
+/// coarser level's spacing (2 * spacing), unless this is the coarsest level.
+std::vector<Candidate> find_uncovered(const IrradianceCache& cache, int width, int height, int spacing, bool coarsest,
                                       const std::function<std::optional<CachePoint>(int, int)>& point_at) {
-    // Look up every pixel's point and test it against the cache, each into its own slot.
-    std::vector<std::optional<CachePoint>> needed(pixels.size());
-    parallel_for_chunks(long(pixels.size()), points_per_chunk, [&](long begin, long end) {
-        for (long i = begin; i < end; ++i) {
-            const std::optional<CachePoint> point = point_at(pixels[size_t(i)].x, pixels[size_t(i)].y);
-            if (point && !cache.covers(point->p, point->n)) needed[size_t(i)] = point;
+    // Each range of rows keeps its uncovered pixels in pixel order (few, where a frame places
+    // L_y near a moving object: a slot per pixel was a frame's largest allocation at production
+    // sizes); the ranges are then joined in order.
+    std::mutex mutex;
+    std::vector<std::pair<long, std::vector<Candidate>>> ranges;  // each range's first row and its candidates
+    const long rows = (height + spacing - 1) / spacing;
+    const long rows_per_chunk = std::max(1L, points_per_chunk * spacing / width);
+    parallel_for_chunks(rows, rows_per_chunk, [&](long begin, long end) {
+        std::vector<Candidate> found;
+        for (long row = begin; row < end; ++row) {
+            const int y = int(row) * spacing;
+            // On the rows the coarser level visited, only the columns between its.
+            const bool between = !coarsest && y % (2 * spacing) == 0;
+            for (int x = between ? spacing : 0; x < width; x += between ? 2 * spacing : spacing) {
+                const std::optional<CachePoint> point = point_at(x, y);
+                if (point && !cache.covers(point->p, point->n)) found.push_back({{x, y}, *point});
+            }
         }
+        if (found.empty()) return;
+        const std::lock_guard lock(mutex);
+        ranges.emplace_back(begin, std::move(found));
     });
-
-    // Keep the uncovered ones, in pixel order.
+    std::sort(ranges.begin(), ranges.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<Candidate> candidates;
-    for (size_t i = 0; i < pixels.size(); ++i)
-        if (needed[i]) candidates.push_back({pixels[i], *needed[i]});
+    for (const auto& [begin, found] : ranges) candidates.insert(candidates.end(), found.begin(), found.end());
     return candidates;
 }
 
@@ -87,8 +90,8 @@ CacheBuildStats build_cache_over_image(IrradianceCache& cache, int width, int he
     const int coarsest = coarsest_spacing(width, height);
     for (int spacing = coarsest; spacing >= 1; spacing /= 2) {
         // Find this level's uncovered points against the cache as the previous level left it.
-        const std::vector<Pixel> pixels = level_pixels(width, height, spacing, spacing == coarsest);
-        const std::vector<Candidate> candidates = find_uncovered(cache, pixels, point_at);
+        const std::vector<Candidate> candidates =
+            find_uncovered(cache, width, height, spacing, spacing == coarsest, point_at);
         if (candidates.empty()) continue;
 
         // Gather them all, then insert in pixel order with radii clamped to the pixel footprint.
