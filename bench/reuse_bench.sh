@@ -40,10 +40,10 @@ print(f"  wall {wall:.1f} s for {n} frames ({wall / n:.3f} s a frame)")
 print(f"  set-up: {setup}")
 print(f"  per frame: total {secs('total'):.3f} s = photons {secs('photon_tracing'):.3f} + L_y {secs('cache'):.3f} + influence {secs('influence'):.3f}"
       f" + L_t {secs('correction'):.3f} + shading {secs('shading'):.3f} (caustics {secs('caustics'):.3f} cpu)")
-total = pix("reused") + pix("looked_up_again") + pix("redone_but_direct") + pix("redone")
+total = pix("reused") + pix("looked_up_again") + pix("direct_again") + pix("redone_but_direct") + pix("redone")
 if total:
     print(f"  pixels a frame: reused {pix('reused'):.0f}, looked up again {pix('looked_up_again'):.0f},"
-          f" redone but direct {pix('redone_but_direct'):.0f}, redone {pix('redone'):.0f};"
+          f" direct again {pix('direct_again'):.0f}, redone but direct {pix('redone_but_direct'):.0f}, redone {pix('redone'):.0f};"
           f" changed camera {pix('changed_camera'):.0f}, direct {pix('changed_direct'):.0f}, indirect {pix('changed_indirect'):.0f},"
           f" caustic {pix('changed_caustic'):.0f}")
 print(f"  photon paths traced a frame: {mean(lambda s: s['photons']['retraced_paths']):.0f}")

@@ -123,7 +123,7 @@ std::vector<unsigned char> file_header(int width, int height, const std::vector<
         list.add_name(channel.name);
         list.add_i32(exr_pixel_type(type));
         for (int i = 0; i < 4; ++i) list.add_u8(0);  // not perceptually linear; three reserved bytes
-        list.add_i32(1), list.add_i32(1);             // sampled at every pixel in x and y
+        list.add_i32(1), list.add_i32(1);            // sampled at every pixel in x and y
     }
     list.add_u8(0);
     const auto one_byte = [](uint8_t value) {

@@ -29,7 +29,6 @@ constexpr int exr_zip_block_lines = 16;
 /// most 255 bytes; the file lists them sorted by name, as OpenEXR requires). Halves are the
 /// nearest to each value, clamped to +-65504 (the largest finite half: an infinity would spread
 /// over the image under a compositor's blur), a NaN written as 0; floats are written as they are.
-std::vector<unsigned char> encode_exr(int width, int height, std::vector<ExrChannelValues> channels,
-                                      ExrPixelType type);
+std::vector<unsigned char> encode_exr(int width, int height, std::vector<ExrChannelValues> channels, ExrPixelType type);
 
 }  // namespace steadylight

@@ -1,10 +1,10 @@
 #include "steadylight/output/exr_encoder.h"
 
+#include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
-#include <Imath/half.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,7 +47,8 @@ std::vector<TestChannel> test_channels(int width, int height) {
         channels[1].values[3 * i] = 0.5f;
         // Any finite half, its bits at random, or a float beyond the halves (clamped).
         half noise;
-        do noise.setBits(uint16_t(rng.next_u32())); while (!noise.isFinite());
+        do noise.setBits(uint16_t(rng.next_u32()));
+        while (!noise.isFinite());
         channels[2].values[3 * i] = i % 97 == 0 ? 1e6f : float(noise);
         channels[3].values[3 * i] = rng.next_float() < 0.5f ? 0.0f : 3.0f;
     }
@@ -57,7 +58,8 @@ std::vector<TestChannel> test_channels(int width, int height) {
 std::string temp_file(const std::string& name) { return (fs::temp_directory_path() / name).string(); }
 
 void write_bytes(const std::string& path, const std::vector<unsigned char>& bytes) {
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 /// The same channels written by OpenEXR's own writer (ZIP), as the reference.
@@ -76,9 +78,10 @@ void write_with_openexr(const std::string& path, int width, int height, const st
         for (size_t i = 0; i < channel.values.size() / 3; ++i) {
             const float value = channel.values[3 * i];
             const half as_half(std::clamp(value, -65504.0f, 65504.0f));
-            std::memcpy(plane.data() + i * value_bytes, type == ExrPixelType::half ? static_cast<const void*>(&as_half)
-                                                                                   : static_cast<const void*>(&value),
-                        value_bytes);
+            std::memcpy(
+                plane.data() + i * value_bytes,
+                type == ExrPixelType::half ? static_cast<const void*>(&as_half) : static_cast<const void*>(&value),
+                value_bytes);
         }
         planes.push_back(std::move(plane));
     }

@@ -139,17 +139,26 @@ void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting, Ana
         const StaticFrame& base = reuse.base();
         const KeptLookUps look_ups = base.look_ups(pixel);
         std::array<std::optional<Rgb>, PixelMemo::capacity> L_t;
-        Rgb L_i;
-        for (int ray = 0; ray < base.samples; ++ray) {
-            const int i = look_ups.look_up(ray);
-            if (i == KeptLookUps::none) continue;
+        const auto L_t_at = [&](int i) -> const Rgb& {
             std::optional<Rgb>& E = L_t[size_t(i)];
             if (!E) {
                 thread_local std::vector<uint32_t> ids;
                 look_ups.records(i, ids);
                 E = lighting.corrected_cache.interpolate_over(ids, look_ups.point(i), look_ups.normal(i));
             }
-            L_i += look_ups.albedo(ray) * *E;
+            return *E;
+        };
+        Rgb L_i;
+        if (look_ups.same_rays()) {
+            // Every ray's share is the same product, added as many times: the same sum.
+            if (const int i = look_ups.look_up(0); i != KeptLookUps::none) {
+                const Rgb share = look_ups.albedo(0) * L_t_at(i);
+                for (int ray = 0; ray < base.samples; ++ray) L_i += share;
+            }
+        } else {
+            for (int ray = 0; ray < base.samples; ++ray)
+                if (const int i = look_ups.look_up(ray); i != KeptLookUps::none)
+                    L_i += look_ups.albedo(ray) * L_t_at(i);
         }
         sums.indirect = sums.extra[L_t_slot] = L_i;
     };
@@ -265,6 +274,7 @@ PixelPlan plan_frame_pixels(const FrameContext& context, const StaticFrame& base
                                changed_records};
     PixelPlan plan = plan_pixels(camera, base, changes);
     stats.pixels_reused = plan.reused, stats.pixels_looked_up_again = plan.looked_up_again;
+    stats.pixels_direct_again = plan.direct_again;
     stats.pixels_redone_but_direct = plan.redone_but_direct, stats.pixels_redone = plan.redone;
     std::copy(std::begin(plan.changed_pixels), std::end(plan.changed_pixels), stats.pixels_changed.begin());
     return plan;
@@ -396,7 +406,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
                                    stats);
         plan = plan_frame_pixels(context, *base, std::move(near_dynamic), traced, static_cache, changed_records,
                                  influence, photon, localized, stats);
-        PixelReuse reuse(*base, plan.work);
+        PixelReuse reuse(*base, plan);
         set_reused_values(reuse, lighting, analysis);
         return shade_localized(context, lighting, photon, localized, Visibility::everything, analysis, &reuse, stats);
     });

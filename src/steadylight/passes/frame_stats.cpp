@@ -46,6 +46,7 @@ void for_each_later_json_field(Stats& s, Visit&& visit) {
     visit("/photons/retraced_paths", s.retraced_photon_paths);
     visit("/pixels/reused", s.pixels_reused);
     visit("/pixels/looked_up_again", s.pixels_looked_up_again);
+    visit("/pixels/direct_again", s.pixels_direct_again);
     visit("/pixels/redone_but_direct", s.pixels_redone_but_direct);
     visit("/pixels/redone", s.pixels_redone);
     visit("/pixels/changed_camera", s.pixels_changed[0]);
@@ -69,12 +70,14 @@ std::string summarize_photon_mapping(const FrameStats& s) {
         double(s.gather_rays) / 1e6, s.retraced_photon_paths, s.photon_tracing_s, s.cache_s);
     if (s.influence_s > 0 || s.correction_s > 0)  // the localized method's own phases
         text += fmt::format("influence {:.2f} s, L_t {:.2f} s, ", s.influence_s, s.correction_s);
-    if (const long pixels = s.pixels_reused + s.pixels_looked_up_again + s.pixels_redone_but_direct + s.pixels_redone) {
+    if (const long pixels = s.pixels_reused + s.pixels_looked_up_again + s.pixels_direct_again +
+                            s.pixels_redone_but_direct + s.pixels_redone) {
         const auto share = [&](long part) { return 100.0 * double(part) / double(pixels); };
-        text +=
-            fmt::format("pixels reused {:.1f}%, looked up again {:.1f}%, redone but direct {:.1f}%, redone {:.1f}%, ",
-                        share(s.pixels_reused), share(s.pixels_looked_up_again), share(s.pixels_redone_but_direct),
-                        share(s.pixels_redone));
+        text += fmt::format(
+            "pixels reused {:.1f}%, looked up again {:.1f}%, direct again {:.1f}%, redone but direct {:.1f}%, "
+            "redone {:.1f}%, ",
+            share(s.pixels_reused), share(s.pixels_looked_up_again), share(s.pixels_direct_again),
+            share(s.pixels_redone_but_direct), share(s.pixels_redone));
     }
     return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.shading_s, s.caustics_s);
 }

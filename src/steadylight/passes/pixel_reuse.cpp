@@ -332,17 +332,19 @@ bool may_meet_rays(const BoundingSphere& s, const BoundingSphere& from, std::arr
 }
 
 PixelSource::Shading PixelReuse::begin(int x, int y, size_t pixel, PixelSums& sums) {
-    const PixelWork work = m_work[pixel];
+    const PixelWork work = m_plan.work[pixel];
     if (work == PixelWork::redo) return Shading::all;
     if (work == PixelWork::redo_but_direct) return Shading::all_but_direct;
     sums = m_base.sums(pixel);
     if (reused_layers) reused_layers(x, y, m_base.trace(pixel), sums);
-    if (work == PixelWork::look_up_again) look_up_again(x, y, pixel, sums);
-    return Shading::none;
+    if (work == PixelWork::look_up_again ||
+        (work == PixelWork::direct_again && (m_plan.changed[pixel] & indirect_term)))
+        look_up_again(x, y, pixel, sums);
+    return work == PixelWork::direct_again ? Shading::direct_only : Shading::none;
 }
 
 void PixelReuse::finish(size_t pixel, PixelSums& sums) {
-    if (m_work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.direct(pixel);
+    if (m_plan.work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.direct(pixel);
 }
 
 namespace {
@@ -535,18 +537,23 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
                 (chains && (changes.records_changed || changes.caustics_changed)))
                 changed |= indirect_term;
             if ((trace.flags & PixelRecorder::reads_caustics) && changes.caustic[size_t(i)]) changed |= caustic_term;
-            // Looked up again where only corrected records changed for a pixel whose every look-up was kept;
-            // kept as it is where none of the records those look-ups interpolated changed.
-            const bool look_up_again =
-                changed == indirect_term && changes.indirect[size_t(i)] == FrameChanges::records &&
-                !(trace.flags &
-                  (PixelRecorder::chain | PixelRecorder::coat | PixelRecorder::gather | PixelRecorder::unkept));
-            if (look_up_again && !changes.changed_records.empty() &&
+            // The indirect light may be looked up again where only corrected records changed for a
+            // pixel whose every look-up was kept; it is kept as it is where none of the records
+            // those look-ups interpolated changed (and the pixel's camera rays are not traced anew).
+            const bool looked_up = (changed & indirect_term) && changes.indirect[size_t(i)] == FrameChanges::records &&
+                                   !(trace.flags & (PixelRecorder::chain | PixelRecorder::coat | PixelRecorder::gather |
+                                                    PixelRecorder::unkept));
+            if (looked_up && !(changed & (camera_term | caustic_term)) && !changes.changed_records.empty() &&
                 !base.interpolates_marked(size_t(i), changed_records))
-                changed = 0;
+                changed &= uint8_t(~indirect_term);
+            // Only the direct light shaded again where the camera rays meet what they met (no
+            // chains either) and the other terms are the static frame's or looked up again.
+            const bool direct_again = (changed & direct_term) && !(changed & (camera_term | caustic_term)) && !chains &&
+                                      (!(changed & indirect_term) || looked_up);
             plan.changed[size_t(i)] = changed;
             plan.work[size_t(i)] = !changed                                            ? PixelWork::reuse
-                                   : look_up_again                                     ? PixelWork::look_up_again
+                                   : changed == indirect_term && looked_up             ? PixelWork::look_up_again
+                                   : direct_again                                      ? PixelWork::direct_again
                                    : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo
                                                                                        : PixelWork::redo_but_direct;
         }
@@ -555,6 +562,7 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
         const PixelWork work = plan.work[i];
         ++(work == PixelWork::reuse           ? plan.reused
            : work == PixelWork::look_up_again ? plan.looked_up_again
+           : work == PixelWork::direct_again  ? plan.direct_again
            : work == PixelWork::redo          ? plan.redone
                                               : plan.redone_but_direct);
         for (int bit = 0; bit < 4; ++bit) plan.changed_pixels[bit] += (plan.changed[i] >> bit) & 1;

@@ -88,6 +88,8 @@ public:
           m_record_sets(record_sets) {}
     /// How many look-ups were kept.
     int count() const { return m_count; }
+    /// Whether every camera ray took the same look-up and albedo (or none).
+    bool same_rays() const { return m_same_rays; }
     /// The look-up camera ray `ray`'s indirect light came from, or none.
     int look_up(int ray) const { return m_rays && ray_byte(ray) != no_ray ? ray_byte(ray) & 3 : none; }
     Vec3 point(int look_up) const;
@@ -232,8 +234,21 @@ private:
 enum class PixelWork : uint8_t {
     reuse,            // every term as the static frame has it
     look_up_again,    // only the indirect light changes: look it up again where the camera rays did, none traced
+    direct_again,     // the direct light changes, maybe the indirect as look_up_again has it: only the
+                      // direct light shaded again (camera and shadow rays), the rest reused or looked up
     redo_but_direct,  // shade again, but the direct light (no shadow rays) is the static frame's
     redo,             // shade again
+};
+
+/// The bits of the `changed` layer: which terms of a pixel a frame redid.
+enum ChangedTerm : uint8_t { camera_term = 1, direct_term = 2, indirect_term = 4, caustic_term = 8 };
+
+/// The work of every pixel of a frame, the terms that made it, and how many of each.
+struct PixelPlan {
+    std::vector<PixelWork> work;
+    std::vector<uint8_t> changed;  // ChangedTerm bits
+    long reused = 0, looked_up_again = 0, direct_again = 0, redone_but_direct = 0, redone = 0;
+    long changed_pixels[4] = {};  // per ChangedTerm bit, in bit order
 };
 
 /// The pixel source of a frame that reuses a static frame: each pixel's work (plan_pixels), the
@@ -241,13 +256,14 @@ enum class PixelWork : uint8_t {
 /// pixel's terms do not.
 class PixelReuse : public PixelSource {
 public:
-    PixelReuse(const StaticFrame& base, const std::vector<PixelWork>& work) : m_base(base), m_work(work) {}
+    PixelReuse(const StaticFrame& base, const PixelPlan& plan) : m_base(base), m_plan(plan) {}
 
     /// Gives a reused pixel's sums the method's layers that change between frames although its
     /// terms do not (the localized method's influence).
     std::function<void(int x, int y, const PixelTrace& trace, PixelSums& sums)> reused_layers;
     /// Gives a PixelWork::look_up_again pixel's sums (the static frame's) its indirect light and
-    /// the method's layers, looked up again at the static frame's look-ups of pixel `index`.
+    /// the method's layers, looked up again at the static frame's look-ups of pixel `index`
+    /// (and a PixelWork::direct_again pixel's whose indirect term changed).
     std::function<void(int x, int y, size_t index, PixelSums& sums)> look_up_again;
 
     const StaticFrame& base() const { return m_base; }
@@ -256,11 +272,8 @@ public:
 
 private:
     const StaticFrame& m_base;
-    const std::vector<PixelWork>& m_work;  // one per pixel, row by row
+    const PixelPlan& m_plan;
 };
-
-/// The bits of the `changed` layer: which terms of a pixel a frame redid.
-enum ChangedTerm : uint8_t { camera_term = 1, direct_term = 2, indirect_term = 4, caustic_term = 8 };
 
 /// What changed in a frame against its static frame.
 struct FrameChanges {
@@ -277,14 +290,8 @@ struct FrameChanges {
     std::vector<uint8_t> changed_records;
 };
 
-/// The work of every pixel of a frame, the terms that made it, and how many of each.
-struct PixelPlan {
-    std::vector<PixelWork> work;
-    std::vector<uint8_t> changed;  // ChangedTerm bits
-    long reused = 0, looked_up_again = 0, redone_but_direct = 0, redone = 0;
-    long changed_pixels[4] = {};  // per ChangedTerm bit, in bit order
-};
-
+/// What each pixel of a frame does against its static frame `base`, given what changed (the top
+/// of this file says how it is told).
 PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const FrameChanges& changes);
 
 /// The surface points a pixel's camera rays met, as the tests of its shadow rays see them.

@@ -244,6 +244,10 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     const Bsdf& bsdf = *surface_bsdf;
     const OrthonormalBasis basis = OrthonormalBasis::from_normal(sp.nm);
     const Vec3 wo = basis.to_local(-ray.d);
+    if (bsdf.is_diffuse() && pixel.direct_only) {
+        c.direct += direct_light(sp, basis, bsdf, wo, strata, pixel);
+        return c;
+    }
     if (bsdf.is_diffuse()) {
         PixelSample at = pixel;
         // Within a pixel the camera's rays spread over about one footprint; at grazing angles
@@ -268,7 +272,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         c.direct += direct_light(sp, own, bsdf, own.to_local(-ray.d), strata, pixel);
         c.direct += light_in_mirrors(sp, own, bsdf, own.to_local(-ray.d), strata, pixel);
     }
-    if (depth >= m_settings.max_specular_depth) return c;
+    if (depth >= m_settings.max_specular_depth || pixel.direct_only) return c;
     // A flat mirror reached by a glossy bounce reflects light that the glossy point sampled.
     const Emission delta_emission = emission == Emission::sampled && is_flat_mirror(surface.object)
                                         ? Emission::sampled_in_mirror
@@ -370,6 +374,8 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                     pixel.recorder = recorder;
                     pixel.pixel_index = i;
                     pixel.skip_direct = shading == PixelSource::Shading::all_but_direct;
+                    pixel.direct_only = shading == PixelSource::Shading::direct_only;
+                    PixelSums shaded;
                     for (int s = 0; s < n; ++s) {
                         const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);
                         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
@@ -379,12 +385,19 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                         Pcg32 path = pixel_stream(camera, x, y, PixelStream::path, s);
                         pixel.sample = s;
                         const Components c = shader.shade(ray, 0, Emission::counted, pixel, ray_strata, path);
-                        sum.covered += c.covered;  // a ray whose light is dropped still met its surface
+                        shaded.covered += c.covered;  // a ray whose light is dropped still met its surface
                         if (!is_finite(c.sum())) continue;
-                        sum.direct += c.direct, sum.indirect += c.indirect, sum.caustic += c.caustic,
-                            sum.specular += c.specular;
-                        for (int e = 0; e < max_extra_layers; ++e) sum.extra[size_t(e)] += c.extra[size_t(e)];
+                        shaded.direct += c.direct, shaded.indirect += c.indirect, shaded.caustic += c.caustic,
+                            shaded.specular += c.specular;
+                        for (int e = 0; e < max_extra_layers; ++e) shaded.extra[size_t(e)] += c.extra[size_t(e)];
                     }
+                    // Where the source gave the rest, a ray's direct light counts where it is
+                    // finite: a ray whose other terms were not would have been dropped whole, but
+                    // those terms are never infinite or NaN (a defect, output/frame_layers.h).
+                    if (pixel.direct_only)
+                        sum.direct = shaded.direct;
+                    else
+                        sum = shaded;
                     if (source) source->finish(i, sum);
                 }
                 out.direct.at(x, y) = sum.direct * inv_n;

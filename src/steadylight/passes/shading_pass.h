@@ -120,13 +120,14 @@ class PixelSource {
 public:
     enum class Shading : uint8_t {
         none,            // the source gave every term
+        direct_only,     // shade only the direct light (emission and shadow rays); the source gave the rest
         all_but_direct,  // shade it, but the direct light (no shadow rays, no emission) is the source's
         all,
     };
 
     virtual ~PixelSource() = default;
     /// How much of pixel (x, y), number `pixel` row by row, to shade; with Shading::none it has
-    /// filled `sums`.
+    /// filled `sums`, with Shading::direct_only every sum but the direct light's.
     virtual Shading begin(int x, int y, size_t pixel, PixelSums& sums) = 0;
     /// The pixel's sums once shaded (not called for Shading::none); with all_but_direct it fills
     /// their direct light.
@@ -155,6 +156,8 @@ struct PixelSample {
     size_t pixel_index = 0;  // row by row
     /// The direct light is the pixel source's: no emission, no shadow rays.
     bool skip_direct = false;
+    /// Only the direct light: no indirect light, caustics, coat or bounces (the source's).
+    bool direct_only = false;
 };
 
 /// The values `compute()` returns at (sp, n), or those an earlier camera ray of the same pixel

@@ -63,6 +63,7 @@ const std::vector<StatsField>& count_fields() {
         {"photon paths traced", [](const FrameStats& s) { return double(s.retraced_photon_paths); }},
         {"pixels reused", [](const FrameStats& s) { return double(s.pixels_reused); }},
         {"pixels looked up again", [](const FrameStats& s) { return double(s.pixels_looked_up_again); }},
+        {"pixels direct again", [](const FrameStats& s) { return double(s.pixels_direct_again); }},
         {"pixels redone but direct", [](const FrameStats& s) { return double(s.pixels_redone_but_direct); }},
         {"pixels redone", [](const FrameStats& s) { return double(s.pixels_redone); }},
         {"pixels with camera rays changed", [](const FrameStats& s) { return double(s.pixels_changed[0]); }},
