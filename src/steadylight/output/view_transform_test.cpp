@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "steadylight/base/error.h"
 
@@ -113,6 +115,27 @@ TEST(ViewTransform, AlphaDividesThePremultipliedColourBeforeTheCurves) {
         EXPECT_EQ(rgba[7], 128);
         EXPECT_EQ(rgba[11], 0);
     }
+}
+
+TEST(ViewTransform, BytesAreTheCurvesRoundedToTheNearestCode) {
+    // Without dither a byte is the code value rounded half away from zero (std::lround), clamped:
+    // values across the whole range, through both curves, at several exposures.
+    Image image(257, 3);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const float v = std::ldexp(float(x + 1) / 64.0f, y * 3 - 6) - (x % 17 == 0 ? 0.25f : 0.0f);
+            image.at(x, y) = {v, v * 1.0001f, x == 5 ? std::nanf("") : v * 0.999f};
+        }
+    for (const ViewCurve curve : {ViewCurve::standard, ViewCurve::filmic})
+        for (const float ev : {0.0f, 1.5f, -2.25f}) {
+            const std::vector<unsigned char> bytes = encode_srgb8(image, {ev, curve, false});
+            for (size_t i = 0; i < image.pixels.size(); ++i)
+                for (int c = 0; c < 3; ++c) {
+                    const float code =
+                        255 * linear_to_srgb(apply_view_curve(apply_exposure(image.pixels[i][c], ev), curve));
+                    ASSERT_EQ(bytes[3 * i + size_t(c)], std::clamp(std::lround(code), 0L, 255L)) << i << " " << c;
+                }
+        }
 }
 
 TEST(ViewTransform, UnknownNameIsAnInputError) {
