@@ -8,12 +8,13 @@
 
 namespace steadylight {
 
-std::optional<std::vector<unsigned char>> deflate_zlib(const unsigned char* data, size_t size, size_t max_size) {
+bool append_deflated(const unsigned char* data, size_t size, size_t max_size, std::vector<unsigned char>& out) {
     if (size > std::numeric_limits<uint32_t>::max() || max_size > std::numeric_limits<uint32_t>::max())
-        return std::nullopt;  // igzip counts in 32 bits; no block of ours comes near
-    // The level's working memory, kept by each thread that compresses.
+        return false;  // igzip counts in 32 bits; no block of ours comes near
+    // The level's working memory and the stream's, kept by each thread that compresses.
     thread_local std::vector<uint8_t> level_buffer(ISAL_DEF_LVL1_DEFAULT);
-    std::vector<unsigned char> out(max_size);
+    thread_local std::vector<uint8_t> stream_buffer;
+    if (stream_buffer.size() < max_size) stream_buffer.resize(max_size);
     isal_zstream stream;
     isal_deflate_stateless_init(&stream);
     stream.level = 1;
@@ -24,11 +25,11 @@ std::optional<std::vector<unsigned char>> deflate_zlib(const unsigned char* data
     stream.flush = NO_FLUSH;
     stream.next_in = const_cast<uint8_t*>(data);
     stream.avail_in = uint32_t(size);
-    stream.next_out = out.data();
-    stream.avail_out = uint32_t(out.size());
-    if (isal_deflate_stateless(&stream) != COMP_OK) return std::nullopt;  // longer than max_size
-    out.resize(stream.total_out);
-    return out;
+    stream.next_out = stream_buffer.data();
+    stream.avail_out = uint32_t(max_size);
+    if (isal_deflate_stateless(&stream) != COMP_OK) return false;  // longer than max_size
+    out.insert(out.end(), stream_buffer.begin(), stream_buffer.begin() + stream.total_out);
+    return true;
 }
 
 size_t deflate_zlib_bound(size_t size) { return compressBound(uLong(size)); }

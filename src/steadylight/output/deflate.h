@@ -8,16 +8,17 @@
 #pragma once
 
 #include <cstddef>
-#include <optional>
 #include <vector>
 
 namespace steadylight {
 
-/// `size` bytes from `data` as a zlib stream, if that is at most `max_size` bytes long; else
-/// nullopt.
-std::optional<std::vector<unsigned char>> deflate_zlib(const unsigned char* data, size_t size, size_t max_size);
+/// Appends `size` bytes from `data` to `out` as a zlib stream, if that is at most `max_size` bytes
+/// long, and returns true; else leaves `out` as it was and returns false. The stream is
+/// compressed into a buffer the thread keeps, so that a file's many blocks each cost only their
+/// compressed bytes' copy.
+bool append_deflated(const unsigned char* data, size_t size, size_t max_size, std::vector<unsigned char>& out);
 
-/// The longest zlib stream deflate_zlib may need for `size` bytes (its stored blocks' worst case).
+/// The longest zlib stream append_deflated may need for `size` bytes (its stored blocks' worst case).
 size_t deflate_zlib_bound(size_t size);
 
 }  // namespace steadylight

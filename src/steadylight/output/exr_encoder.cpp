@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <optional>
 
 #include "steadylight/base/check.h"
 #include "steadylight/output/deflate.h"
@@ -25,6 +24,9 @@ static_assert(std::endian::native == std::endian::little);
 /// The largest finite half: above it a half is +inf, which a compositor's blur would spread over
 /// the image.
 constexpr float max_half = 65504.0f;
+
+/// The lines a ZIP block of an EXR file holds.
+constexpr int exr_zip_block_lines = 16;
 
 /// `value` as a half, clamped to +-max_half. A NaN (which render_frame has replaced already,
 /// output/frame_layers.h) becomes 0 here too.
@@ -149,10 +151,11 @@ std::vector<unsigned char> file_header(int width, int height, const std::vector<
     return std::move(out.bytes());
 }
 
-/// The stored bytes of the block of lines [y0, y1): the lines' channels' values, deflated after
-/// OpenEXR's ZIP predictor, or as they are where that is not shorter.
-std::vector<unsigned char> encode_block(int width, int y0, int y1, const std::vector<ExrChannelValues>& channels,
-                                        ExrPixelType type) {
+/// Appends to `file` the block of lines [y0, y1): its first line, its size and its bytes, the
+/// lines' channels' values deflated after OpenEXR's ZIP predictor, or as they are where that is
+/// not shorter.
+void append_block(int width, int y0, int y1, const std::vector<ExrChannelValues>& channels, ExrPixelType type,
+                  std::vector<unsigned char>& file) {
     const size_t line = size_t(width);
     const size_t value_bytes = type == ExrPixelType::half ? sizeof(half) : sizeof(float);
     const size_t size = size_t(y1 - y0) * channels.size() * line * value_bytes;
@@ -178,9 +181,12 @@ std::vector<unsigned char> encode_block(int width, int y0, int y1, const std::ve
     predicted.resize(size);
     predicted[0] = split[0];
     for (size_t i = 1; i < size; ++i) predicted[i] = static_cast<unsigned char>(split[i] - split[i - 1] + 128);
-    if (std::optional<std::vector<unsigned char>> deflated = deflate_zlib(predicted.data(), size, size - 1))
-        return std::move(*deflated);
-    return {raw.begin(), raw.end()};
+    append_value(file, int32_t(y0));
+    const size_t size_at = file.size();
+    append_value(file, int32_t(0));
+    if (!append_deflated(predicted.data(), size, size - 1, file)) file.insert(file.end(), raw.begin(), raw.end());
+    const int32_t stored = int32_t(file.size() - size_at - sizeof(int32_t));
+    std::memcpy(file.data() + size_at, &stored, sizeof stored);
 }
 
 }  // namespace
@@ -205,11 +211,7 @@ std::vector<unsigned char> encode_exr(int width, int height, std::vector<ExrChan
         const uint64_t offset = file.size();
         std::memcpy(file.data() + offsets_at + size_t(y0 / exr_zip_block_lines) * sizeof(uint64_t), &offset,
                     sizeof offset);
-        const std::vector<unsigned char> block =
-            encode_block(width, y0, std::min(y0 + exr_zip_block_lines, height), channels, type);
-        append_value(file, int32_t(y0));
-        append_value(file, int32_t(block.size()));
-        file.insert(file.end(), block.begin(), block.end());
+        append_block(width, y0, std::min(y0 + exr_zip_block_lines, height), channels, type, file);
     }
     return file;
 }

@@ -22,9 +22,6 @@ struct ExrChannelValues {
     const float* values;
 };
 
-/// The lines a ZIP block of an EXR file holds.
-constexpr int exr_zip_block_lines = 16;
-
 /// The bytes of an EXR file of `width` x `height` pixels holding `channels` (names distinct, at
 /// most 255 bytes; the file lists them sorted by name, as OpenEXR requires). Halves are the
 /// nearest to each value, clamped to +-65504 (the largest finite half: an infinity would spread

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -92,9 +91,9 @@ std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& v
             out[i] = static_cast<unsigned char>(in[i] - paeth_predictor(left, up, up_left));
         }
     }
-    std::optional<std::vector<unsigned char>> compressed =
-        deflate_zlib(filtered.data(), filtered.size(), deflate_zlib_bound(filtered.size()));
-    if (!compressed) throw std::runtime_error("PNG encoder failed");
+    std::vector<unsigned char> compressed;
+    if (!append_deflated(filtered.data(), filtered.size(), deflate_zlib_bound(filtered.size()), compressed))
+        throw std::runtime_error("PNG encoder failed");
 
     std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     std::vector<unsigned char> header;
@@ -103,7 +102,7 @@ std::vector<unsigned char> encode_png(const Image& image, const ViewTransform& v
     // 8 bits a channel, RGB (2) or RGBA (6), deflate, adaptive filters, no interlace.
     header.insert(header.end(), {8, static_cast<unsigned char>(alpha ? 6 : 2), 0, 0, 0});
     append_png_chunk(png, "IHDR", header);
-    append_png_chunk(png, "IDAT", *compressed);
+    append_png_chunk(png, "IDAT", compressed);
     append_png_chunk(png, "IEND", {});
     return png;
 }

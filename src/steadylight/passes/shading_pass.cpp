@@ -244,11 +244,11 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     const Bsdf& bsdf = *surface_bsdf;
     const OrthonormalBasis basis = OrthonormalBasis::from_normal(sp.nm);
     const Vec3 wo = basis.to_local(-ray.d);
-    if (bsdf.is_diffuse() && pixel.direct_only) {
-        c.direct += direct_light(sp, basis, bsdf, wo, strata, pixel);
-        return c;
-    }
     if (bsdf.is_diffuse()) {
+        if (pixel.direct_only) {
+            c.direct += direct_light(sp, basis, bsdf, wo, strata, pixel);
+            return c;
+        }
         PixelSample at = pixel;
         // Within a pixel the camera's rays spread over about one footprint; at grazing angles
         // over more, hence the factor 2.
