@@ -19,11 +19,12 @@ constexpr uint64_t mix_bits(uint64_t v) {
     return v;
 }
 
+/// A hash `h` of words so far, with the word `word` mixed in: hash_ids's step, for callers that
+/// share the hash of their first words among many last ones.
+constexpr uint64_t hash_more(uint64_t h, uint64_t word) { return mix_bits(h ^ (word + 0x9e3779b97f4a7c15ull)); }
+
 constexpr uint64_t hash_ids(uint64_t a, uint64_t b = 0, uint64_t c = 0, uint64_t d = 0) {
-    uint64_t h = mix_bits(a + 0x9e3779b97f4a7c15ull);
-    h = mix_bits(h ^ (b + 0x9e3779b97f4a7c15ull));
-    h = mix_bits(h ^ (c + 0x9e3779b97f4a7c15ull));
-    return mix_bits(h ^ (d + 0x9e3779b97f4a7c15ull));
+    return hash_more(hash_more(hash_more(hash_more(0, a), b), c), d);
 }
 
 /// A hash of two vectors, bit for bit (a ray's origin and direction, a photon's position and
