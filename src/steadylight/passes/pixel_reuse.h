@@ -169,6 +169,7 @@ private:
     std::vector<std::vector<std::byte>> m_tiles;     // per shading tile, row by row
     std::vector<TileRecordSets> m_tile_record_sets;  // per shading tile
     int m_tiles_x = 0;
+    double m_inverse_width = 0;  // 1 / width, for tile_of
 };
 
 /// A static frame is kept only where it takes at most this share of the memory available (else
