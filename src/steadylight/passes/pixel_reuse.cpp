@@ -4,6 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <mutex>
+#include <optional>
+#include <utility>
 
 #include "steadylight/base/hash.h"
 #include "steadylight/base/parallel.h"
@@ -498,11 +501,10 @@ public:
         });
     }
 
-    /// Whether pixel `pixel` (row by row) lies in a tile whose shadow rays cannot meet object o
-    /// on their way to light l, for each (o, l) in turn (objects outer).
-    const uint8_t* free_pairs(size_t pixel) const {
-        const size_t x = pixel % size_t(m_width), y = pixel / size_t(m_width);
-        return m_free.data() + ((y / size) * size_t(m_tiles_x) + x / size) * m_pairs;
+    /// Whether pixel (x, y) lies in a tile whose shadow rays cannot meet object o on their way
+    /// to light l, for each (o, l) in turn (objects outer).
+    const uint8_t* free_pairs(int x, int y) const {
+        return m_free.data() + (size_t(y / size) * size_t(m_tiles_x) + size_t(x / size)) * m_pairs;
     }
 
 private:
@@ -523,58 +525,79 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
                                                                    ? std::vector<std::vector<uint64_t>>{}
                                                                    : base.marked_records(changes.changed_records);
     const ShadowFreeTiles shadow_free(camera, base, changes);
-    parallel_for_chunks(long(pixels), 4096, [&](long begin, long end) {
-        for (long i = begin; i < end; ++i) {
-            const PixelTrace& trace = base.trace(size_t(i));
-            const BoundingSphere points = pixel_points(trace);
-            const float slack = shadow_ray_slack(points);
-            const bool chains = trace.flags & PixelRecorder::chain;
-            uint8_t changed = 0;
-            if (changes.near_dynamic[size_t(i)] || (trace.flags & PixelRecorder::open_chain)) changed |= camera_term;
-            const uint8_t* tile_free = shadow_free.free_pairs(size_t(i));
-            for (const BoundingSphere& object : changes.dynamic) {
-                if (chains && may_meet_segments(object, points, points, slack)) changed |= camera_term;
-                for (const BoundingSphere& light : changes.lights)
-                    if (!*tile_free++ && may_meet_segments(object, points, light, slack)) changed |= direct_term;
-                if (trace.reached_distant_light() &&
-                    may_meet_rays(object, BoundingSphere{points.center, points.radius + slack}, trace.to_distant_lo,
-                                  trace.to_distant_hi))
-                    changed |= direct_term;
+    std::mutex counts_lock;
+    // Row by row: a pixel's tile comes from its x and y, and each range of rows adds its counts.
+    parallel_for_chunks(camera.height, 4, [&](long y_begin, long y_end) {
+        long counts[5] = {}, changed_pixels[4] = {};
+        for (int y = int(y_begin); y < int(y_end); ++y)
+            for (int x = 0; x < camera.width; ++x) {
+                const size_t i = size_t(y) * size_t(camera.width) + size_t(x);
+                const PixelTrace& trace = base.trace(i);
+                // The sphere about the pixel's points and its rays' slack, made when a test needs
+                // them: far from every shadow's hull, no test does.
+                std::optional<std::pair<BoundingSphere, float>> sphere;
+                const auto points_and_slack = [&]() -> const std::pair<BoundingSphere, float>& {
+                    if (!sphere) {
+                        const BoundingSphere points = pixel_points(trace);
+                        sphere.emplace(points, shadow_ray_slack(points));
+                    }
+                    return *sphere;
+                };
+                const bool chains = trace.flags & PixelRecorder::chain;
+                uint8_t changed = 0;
+                if (changes.near_dynamic[i] || (trace.flags & PixelRecorder::open_chain)) changed |= camera_term;
+                const uint8_t* tile_free = shadow_free.free_pairs(x, y);
+                for (const BoundingSphere& object : changes.dynamic) {
+                    if (chains) {
+                        const auto& [points, slack] = points_and_slack();
+                        if (may_meet_segments(object, points, points, slack)) changed |= camera_term;
+                    }
+                    for (const BoundingSphere& light : changes.lights)
+                        if (!*tile_free++) {
+                            const auto& [points, slack] = points_and_slack();
+                            if (may_meet_segments(object, points, light, slack)) changed |= direct_term;
+                        }
+                    if (trace.reached_distant_light()) {
+                        const auto& [points, slack] = points_and_slack();
+                        if (may_meet_rays(object, BoundingSphere{points.center, points.radius + slack},
+                                          trace.to_distant_lo, trace.to_distant_hi))
+                            changed |= direct_term;
+                    }
+                }
+                if (changes.indirect[i] || (trace.flags & (PixelRecorder::gather | PixelRecorder::coat)) ||
+                    (chains && (changes.records_changed || changes.caustics_changed)))
+                    changed |= indirect_term;
+                if ((trace.flags & PixelRecorder::reads_caustics) && changes.caustic[i]) changed |= caustic_term;
+                // The indirect light may be looked up again where only corrected records changed
+                // for a pixel whose every look-up was kept; it is kept as it is where none of the
+                // records those look-ups interpolated changed (and the pixel's camera rays are not
+                // traced anew).
+                const bool looked_up = (changed & indirect_term) && changes.indirect[i] == FrameChanges::records &&
+                                       !(trace.flags & (PixelRecorder::chain | PixelRecorder::coat |
+                                                        PixelRecorder::gather | PixelRecorder::unkept));
+                if (looked_up && !(changed & (camera_term | caustic_term)) && !changes.changed_records.empty() &&
+                    !base.interpolates_marked(i, changed_records))
+                    changed &= uint8_t(~indirect_term);
+                // Only the direct light shaded again where the camera rays meet what they met (no
+                // chains either) and the other terms are the static frame's or looked up again.
+                const bool direct_again = (changed & direct_term) && !(changed & (camera_term | caustic_term)) &&
+                                          !chains && (!(changed & indirect_term) || looked_up);
+                const PixelWork work = !changed                                            ? PixelWork::reuse
+                                       : changed == indirect_term && looked_up             ? PixelWork::look_up_again
+                                       : direct_again                                      ? PixelWork::direct_again
+                                       : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo
+                                                                                           : PixelWork::redo_but_direct;
+                plan.changed[i] = changed;
+                plan.work[i] = work;
+                ++counts[int(work)];
+                for (int bit = 0; bit < 4; ++bit) changed_pixels[bit] += (changed >> bit) & 1;
             }
-            if (changes.indirect[size_t(i)] || (trace.flags & (PixelRecorder::gather | PixelRecorder::coat)) ||
-                (chains && (changes.records_changed || changes.caustics_changed)))
-                changed |= indirect_term;
-            if ((trace.flags & PixelRecorder::reads_caustics) && changes.caustic[size_t(i)]) changed |= caustic_term;
-            // The indirect light may be looked up again where only corrected records changed for a
-            // pixel whose every look-up was kept; it is kept as it is where none of the records
-            // those look-ups interpolated changed (and the pixel's camera rays are not traced anew).
-            const bool looked_up = (changed & indirect_term) && changes.indirect[size_t(i)] == FrameChanges::records &&
-                                   !(trace.flags & (PixelRecorder::chain | PixelRecorder::coat | PixelRecorder::gather |
-                                                    PixelRecorder::unkept));
-            if (looked_up && !(changed & (camera_term | caustic_term)) && !changes.changed_records.empty() &&
-                !base.interpolates_marked(size_t(i), changed_records))
-                changed &= uint8_t(~indirect_term);
-            // Only the direct light shaded again where the camera rays meet what they met (no
-            // chains either) and the other terms are the static frame's or looked up again.
-            const bool direct_again = (changed & direct_term) && !(changed & (camera_term | caustic_term)) && !chains &&
-                                      (!(changed & indirect_term) || looked_up);
-            plan.changed[size_t(i)] = changed;
-            plan.work[size_t(i)] = !changed                                            ? PixelWork::reuse
-                                   : changed == indirect_term && looked_up             ? PixelWork::look_up_again
-                                   : direct_again                                      ? PixelWork::direct_again
-                                   : (changed & (camera_term | direct_term)) || chains ? PixelWork::redo
-                                                                                       : PixelWork::redo_but_direct;
-        }
+        const std::lock_guard<std::mutex> hold(counts_lock);
+        plan.reused += counts[int(PixelWork::reuse)], plan.looked_up_again += counts[int(PixelWork::look_up_again)];
+        plan.direct_again += counts[int(PixelWork::direct_again)], plan.redone += counts[int(PixelWork::redo)];
+        plan.redone_but_direct += counts[int(PixelWork::redo_but_direct)];
+        for (int bit = 0; bit < 4; ++bit) plan.changed_pixels[bit] += changed_pixels[bit];
     });
-    for (size_t i = 0; i < pixels; ++i) {
-        const PixelWork work = plan.work[i];
-        ++(work == PixelWork::reuse           ? plan.reused
-           : work == PixelWork::look_up_again ? plan.looked_up_again
-           : work == PixelWork::direct_again  ? plan.direct_again
-           : work == PixelWork::redo          ? plan.redone
-                                              : plan.redone_but_direct);
-        for (int bit = 0; bit < 4; ++bit) plan.changed_pixels[bit] += (plan.changed[i] >> bit) & 1;
-    }
     return plan;
 }
 
