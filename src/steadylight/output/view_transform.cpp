@@ -23,8 +23,8 @@ float hable(float x) {
 constexpr float hable_exposure_bias = 2.0f;  // from the talk's sample code
 constexpr float hable_white = 11.2f;         // linear white point W of the talk
 
-/// The dither's hash of pixel (x, y), channel c is hash_ids(x, y, c, dither_key): a row shares
-/// its first step, hash_more(0, x), and a pixel's channels their first two.
+/// The dither's hash of pixel (x, y), channel c is hash_ids(x, y, c, dither_key): the pixels of
+/// a column share its first step, hash_more(0, x), and a pixel's channels their first two.
 constexpr uint64_t dither_key = 0x5344495448ull;
 
 /// A fixed dither offset in [-0.5, 0.5) of one code value for channel c of the pixel whose hash
