@@ -3,6 +3,7 @@
 #include <isa-l/igzip_lib.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 
@@ -11,10 +12,15 @@ namespace steadylight {
 bool append_deflated(const unsigned char* data, size_t size, size_t max_size, std::vector<unsigned char>& out) {
     if (size > std::numeric_limits<uint32_t>::max() || max_size > std::numeric_limits<uint32_t>::max())
         return false;  // igzip counts in 32 bits; no block of ours comes near
-    // The level's working memory and the stream's, kept by each thread that compresses.
+    // The level's working memory and the stream's, kept by each thread that compresses, and
+    // zeroed for each stream as a fresh thread's are: a frame written by a process that had
+    // compressed other files before once held a block whose bytes differed (inflating to the
+    // same data) from the same frame's written by another process, and frames must come out
+    // the same bytes wherever they are rendered (the farm's tests compare them).
     thread_local std::vector<uint8_t> level_buffer(ISAL_DEF_LVL1_DEFAULT);
     thread_local std::vector<uint8_t> stream_buffer;
-    if (stream_buffer.size() < max_size) stream_buffer.resize(max_size);
+    std::fill(level_buffer.begin(), level_buffer.end(), uint8_t(0));
+    stream_buffer.assign(max_size, 0);
     isal_zstream stream;
     isal_deflate_stateless_init(&stream);
     stream.level = 1;

@@ -13,9 +13,8 @@
 namespace steadylight {
 
 /// Appends `size` bytes from `data` to `out` as a zlib stream, if that is at most `max_size` bytes
-/// long, and returns true; else leaves `out` as it was and returns false. The stream is
-/// compressed into a buffer the thread keeps, so that a file's many blocks each cost only their
-/// compressed bytes' copy.
+/// long, and returns true; else leaves `out` as it was and returns false. The same data gives the
+/// same bytes whatever the thread compressed before.
 bool append_deflated(const unsigned char* data, size_t size, size_t max_size, std::vector<unsigned char>& out);
 
 /// The longest zlib stream append_deflated may need for `size` bytes (its stored blocks' worst case).
