@@ -3,7 +3,6 @@
 #include <isa-l/igzip_lib.h>
 #include <zlib.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <limits>
 
@@ -12,15 +11,12 @@ namespace steadylight {
 bool append_deflated(const unsigned char* data, size_t size, size_t max_size, std::vector<unsigned char>& out) {
     if (size > std::numeric_limits<uint32_t>::max() || max_size > std::numeric_limits<uint32_t>::max())
         return false;  // igzip counts in 32 bits; no block of ours comes near
-    // The level's working memory and the stream's, kept by each thread that compresses, and
-    // zeroed for each stream as a fresh thread's are: a frame written by a process that had
-    // compressed other files before once held a block whose bytes differed (inflating to the
-    // same data) from the same frame's written by another process, and frames must come out
-    // the same bytes wherever they are rendered (the farm's tests compare them).
-    thread_local std::vector<uint8_t> level_buffer(ISAL_DEF_LVL1_DEFAULT);
-    thread_local std::vector<uint8_t> stream_buffer;
-    std::fill(level_buffer.begin(), level_buffer.end(), uint8_t(0));
-    stream_buffer.assign(max_size, 0);
+    // Fresh zeroed working memory for every stream, for the level and for the output: the same
+    // data must give the same bytes whatever the thread compressed before, since frames rendered
+    // by different processes are compared byte for byte (the farm's tests).
+    std::vector<uint8_t> level_buffer(ISAL_DEF_LVL1_DEFAULT);
+    const size_t start = out.size();
+    out.resize(start + max_size);
     isal_zstream stream;
     isal_deflate_stateless_init(&stream);
     stream.level = 1;
@@ -31,11 +27,11 @@ bool append_deflated(const unsigned char* data, size_t size, size_t max_size, st
     stream.flush = NO_FLUSH;
     stream.next_in = const_cast<uint8_t*>(data);
     stream.avail_in = uint32_t(size);
-    stream.next_out = stream_buffer.data();
+    stream.next_out = out.data() + start;
     stream.avail_out = uint32_t(max_size);
-    if (isal_deflate_stateless(&stream) != COMP_OK) return false;  // longer than max_size
-    out.insert(out.end(), stream_buffer.begin(), stream_buffer.begin() + stream.total_out);
-    return true;
+    const bool fits = isal_deflate_stateless(&stream) == COMP_OK;  // else longer than max_size
+    out.resize(fits ? start + stream.total_out : start);
+    return fits;
 }
 
 size_t deflate_zlib_bound(size_t size) { return compressBound(uLong(size)); }
