@@ -54,15 +54,16 @@ struct SrgbTable {
         }
     }
 };
+// Built once at start-up, not on first use: a function's static would be checked at every value.
+const SrgbTable srgb_table;
 
 float srgb_above_toe(float v) {
-    static const SrgbTable table;
     constexpr uint32_t first = uint32_t(127 + srgb_first_octave) << 23;  // the bits of 2^srgb_first_octave
     const uint32_t bits = std::bit_cast<uint32_t>(v) - first;
     const uint32_t step = bits >> srgb_shift;
     const float t = float(bits & ((1u << srgb_shift) - 1)) * (1.0f / (1u << srgb_shift));
-    const float below = table.values[step];
-    return t == 0 ? below : below + t * (table.values[step + 1] - below);
+    const float below = srgb_table.values[step];
+    return t == 0 ? below : below + t * (srgb_table.values[step + 1] - below);
 }
 
 }  // namespace
