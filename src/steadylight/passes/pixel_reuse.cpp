@@ -6,7 +6,6 @@
 #include <cstring>
 #include <mutex>
 #include <optional>
-#include <utility>
 
 #include "steadylight/base/hash.h"
 #include "steadylight/base/parallel.h"
@@ -507,6 +506,11 @@ public:
         return m_free.data() + (size_t(y / size) * size_t(m_tiles_x) + size_t(x / size)) * m_pairs;
     }
 
+    /// Whether every pair of `pairs`, as free_pairs gives them, is free.
+    bool all_free(const uint8_t* pairs) const {
+        return std::all_of(pairs, pairs + m_pairs, [](uint8_t f) { return f; });
+    }
+
 private:
     static constexpr int size = 8;
     int m_width, m_tiles_x;
@@ -533,36 +537,26 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
             for (int x = 0; x < camera.width; ++x) {
                 const size_t i = size_t(y) * size_t(camera.width) + size_t(x);
                 const PixelTrace& trace = base.trace(i);
-                // The sphere about the pixel's points and its rays' slack, made when a test needs
-                // them: far from every shadow's hull, no test does.
-                std::optional<std::pair<BoundingSphere, float>> sphere;
-                const auto points_and_slack = [&]() -> const std::pair<BoundingSphere, float>& {
-                    if (!sphere) {
-                        const BoundingSphere points = pixel_points(trace);
-                        sphere.emplace(points, shadow_ray_slack(points));
-                    }
-                    return *sphere;
-                };
                 const bool chains = trace.flags & PixelRecorder::chain;
                 uint8_t changed = 0;
                 if (changes.near_dynamic[i] || (trace.flags & PixelRecorder::open_chain)) changed |= camera_term;
                 const uint8_t* tile_free = shadow_free.free_pairs(x, y);
+                // The sphere about the pixel's points and its rays' slack, made only where a test
+                // needs it: far from every shadow's hull, no test does.
+                BoundingSphere points;
+                float slack = 0;
+                if (chains || trace.reached_distant_light() || !shadow_free.all_free(tile_free)) {
+                    points = pixel_points(trace);
+                    slack = shadow_ray_slack(points);
+                }
                 for (const BoundingSphere& object : changes.dynamic) {
-                    if (chains) {
-                        const auto& [points, slack] = points_and_slack();
-                        if (may_meet_segments(object, points, points, slack)) changed |= camera_term;
-                    }
+                    if (chains && may_meet_segments(object, points, points, slack)) changed |= camera_term;
                     for (const BoundingSphere& light : changes.lights)
-                        if (!*tile_free++) {
-                            const auto& [points, slack] = points_and_slack();
-                            if (may_meet_segments(object, points, light, slack)) changed |= direct_term;
-                        }
-                    if (trace.reached_distant_light()) {
-                        const auto& [points, slack] = points_and_slack();
-                        if (may_meet_rays(object, BoundingSphere{points.center, points.radius + slack},
-                                          trace.to_distant_lo, trace.to_distant_hi))
-                            changed |= direct_term;
-                    }
+                        if (!*tile_free++ && may_meet_segments(object, points, light, slack)) changed |= direct_term;
+                    if (trace.reached_distant_light() &&
+                        may_meet_rays(object, BoundingSphere{points.center, points.radius + slack}, trace.to_distant_lo,
+                                      trace.to_distant_hi))
+                        changed |= direct_term;
                 }
                 if (changes.indirect[i] || (trace.flags & (PixelRecorder::gather | PixelRecorder::coat)) ||
                     (chains && (changes.records_changed || changes.caustics_changed)))
