@@ -265,12 +265,13 @@ void StaticFrameMaker::finish(size_t pixel, PixelSums& sums) {
         else
             for (const uint8_t ray : pending.rays) append(bytes, ray);
     }
-    if (double(m_bytes += bytes.size() - kept.at) > m_max_bytes) m_too_big = true;
+    PendingSets& sets = m_pending_sets[tile];
+    sets.value_bytes += bytes.size() - kept.at;
     // The tile's last pixel: its record sets are complete.
     const int tile_x = int(tile % size_t(m_out.m_tiles_x)), tile_y = int(tile / size_t(m_out.m_tiles_x));
     const int tile_pixels = std::min(shading_tile_size, m_out.width - tile_x * shading_tile_size) *
                             std::min(shading_tile_size, m_out.height - tile_y * shading_tile_size);
-    if (++m_pending_sets[tile].pixels_done == tile_pixels) pack_record_sets(tile);
+    if (++sets.pixels_done == tile_pixels) pack_record_sets(tile);
 }
 
 uint16_t StaticFrameMaker::record_set(size_t tile, const std::vector<uint32_t>& ids) {
@@ -287,7 +288,6 @@ uint16_t StaticFrameMaker::record_set(size_t tile, const std::vector<uint32_t>& 
     pending.sets.push_back(uint32_t(ids.size()));
     pending.sets.insert(pending.sets.end(), ids.begin(), ids.end());
     pending.index.emplace(checksum, set);
-    m_bytes += (ids.size() + 1) * sizeof(uint32_t);
     return set;
 }
 
@@ -295,8 +295,7 @@ void StaticFrameMaker::pack_record_sets(size_t tile) {
     PendingSets& pending = m_pending_sets[tile];
     TileRecordSets& packed = m_out.m_tile_record_sets[tile];
     packed = TileRecordSets::of(pending.sets);
-    m_bytes += packed.bytes();
-    m_bytes -= pending.sets.size() * sizeof(uint32_t);
+    if (double(m_bytes += pending.value_bytes + packed.bytes()) > m_max_bytes) m_too_big = true;
     pending = {};
 }
 

@@ -177,9 +177,10 @@ private:
 constexpr double static_frame_memory_share = 0.25;
 
 /// The pixel source that makes a static frame: every pixel shaded whole, its sums and what its
-/// shading went through kept. When the frame's bytes grow past `max_bytes` it stops keeping
-/// values, and fits() says so (the frame must then not be used). Its tiles' bytes may reserve up
-/// to as much again while it is made, until finish_frame().
+/// shading went through kept. When the frame's bytes grow past `max_bytes` (counted a shading
+/// tile at a time, as tiles are done) it stops keeping values, and fits() says so (the frame must
+/// then not be used). Its tiles' bytes may reserve up to as much again while it is made, until
+/// finish_frame().
 class StaticFrameMaker : public PixelSource, public PixelRecorder {
 public:
     /// Fills `out`, made for `frame`'s camera at `samples` camera rays a pixel, whose look-ups
@@ -210,12 +211,14 @@ private:
         std::vector<uint32_t> ids;
     };
     /// The distinct sets of records a tile's look-ups interpolated, until its last pixel is
-    /// finished and they are packed (so that only the tiles being shaded hold them unpacked).
+    /// finished and they are packed (so that only the tiles being shaded hold them unpacked), and
+    /// the bytes of the tile's values, counted into the frame's once the tile is done.
     struct PendingSets {
         std::vector<uint32_t> sets;                         // in the order first met: size, then ids
         std::vector<uint32_t> at;                           // per set: where it starts in `sets`
         std::unordered_multimap<uint64_t, uint16_t> index;  // a set's checksum: the sets with it
         int pixels_done = 0;
+        size_t value_bytes = 0;
     };
     /// The tile's set holding `ids`, added if it is new.
     uint16_t record_set(size_t tile, const std::vector<uint32_t>& ids);
