@@ -173,14 +173,18 @@ void append_block(int width, int y0, int y1, const std::vector<ExrChannelValues>
             at += line * value_bytes;
         }
     // The even bytes, then the odd ones; then each byte as its difference from the one before,
-    // plus 128 (two passes that the compiler vectorizes).
+    // plus 128. Two passes the compiler vectorizes, over plain pointers: through the vectors, a
+    // byte stored might be one of a thread_local vector's own pointers, reloaded at every byte.
     split.resize(size);
-    const size_t pairs = size / 2, odd_at = (size + 1) / 2;
-    for (size_t j = 0; j < pairs; ++j) split[j] = raw[2 * j], split[odd_at + j] = raw[2 * j + 1];
-    if (size % 2) split[pairs] = raw[size - 1];
     predicted.resize(size);
-    predicted[0] = split[0];
-    for (size_t i = 1; i < size; ++i) predicted[i] = static_cast<unsigned char>(split[i] - split[i - 1] + 128);
+    const unsigned char* const from = raw.data();
+    unsigned char* const even_odd = split.data();
+    unsigned char* const difference = predicted.data();
+    const size_t pairs = size / 2, odd_at = (size + 1) / 2;
+    for (size_t j = 0; j < pairs; ++j) even_odd[j] = from[2 * j], even_odd[odd_at + j] = from[2 * j + 1];
+    if (size % 2) even_odd[pairs] = from[size - 1];
+    difference[0] = even_odd[0];
+    for (size_t i = 1; i < size; ++i) difference[i] = static_cast<unsigned char>(even_odd[i] - even_odd[i - 1] + 128);
     append_value(file, int32_t(y0));
     const size_t size_at = file.size();
     append_value(file, int32_t(0));
