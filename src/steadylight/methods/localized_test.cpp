@@ -7,7 +7,9 @@
 
 #include <filesystem>
 
+#include "steadylight/base/error.h"
 #include "steadylight/methods/photon_mapping.h"
+#include "steadylight/passes/influence.h"
 #include "support/scene_builder.h"
 
 namespace steadylight {
@@ -157,6 +159,36 @@ TEST(Localized, SameFramesOnOneOrTwoThreads) {
     EXPECT_TRUE(one[0].beauty.pixels == two[0].beauty.pixels);
     EXPECT_TRUE(one[0].influence.pixels == two[0].influence.pixels);
     EXPECT_EQ(one[0].stats.irradiance_records, two[0].stats.irradiance_records);
+}
+
+// The influence is estimated at every n-th pixel centre, each estimate a function of its pixel
+// alone: a coarser step samples the same values at the pixels both steps share, so a large image
+// may take fewer samples of the same smooth estimate.
+TEST(Localized, CoarserInfluenceStepSamplesTheSameValues) {
+    const Scene scene = load("ball", 64, 48);
+    LocalizedSettings fine, coarse;
+    fine.influence_step = 4, coarse.influence_step = 8;
+    const Image a = render(scene, {15}, StaticCacheUse::corrected, fine)[0].influence;
+    const Image b = render(scene, {15}, StaticCacheUse::corrected, coarse)[0].influence;
+    int felt = 0;
+    for (int y = 0; y < a.height; y += 8)
+        for (int x = 0; x < a.width; x += 8) {
+            EXPECT_EQ(a.at(x, y), b.at(x, y)) << "pixel " << x << "," << y;
+            felt += a.at(x, y).r > 0;
+        }
+    EXPECT_GT(felt, 5);
+    EXPECT_FALSE(a.pixels == b.pixels);  // between the shared pixels, the blocks differ
+}
+
+TEST(Localized, InfluenceStepGrowsWithTheImageHeight) {
+    const LocalizedSettings chosen;  // influence_step 0: by the height
+    for (const auto [height, step] : {std::pair{24, 4}, {240, 4}, {480, 4}, {959, 4}, {960, 8}, {1080, 8}, {2160, 16}})
+        EXPECT_EQ(influence_step(chosen, height), step) << height << " rows";
+    LocalizedSettings fixed;
+    fixed.influence_step = 6;
+    EXPECT_EQ(influence_step(fixed, 2160), 6);
+    fixed.influence_step = -1;
+    EXPECT_THROW(validate(fixed, "/localized"), InputError);
 }
 
 TEST(Localized, FrozenCacheRecomputesOnlyOnDynamicObjects) {

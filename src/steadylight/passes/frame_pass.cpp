@@ -370,7 +370,8 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
 
     // Influence of the dynamic objects on each pixel's point.
     const InfluenceMap influence = timed_phase("influence", stats.influence_s, [&] {
-        if (centre_rays) centre_rays->make(context, static_cache, localized.influence_step);
+        if (centre_rays)
+            centre_rays->make(context, static_cache, influence_step(localized, context.frame.camera.height));
         return frozen ? InfluenceMap{}
                       : estimate_influence(context, photons.dynamic, static_cache, localized,
                                            photon.irradiance_estimate.max_radius, centre_rays);

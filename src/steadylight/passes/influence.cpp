@@ -36,11 +36,15 @@ float relative_influence(const PhotonMap& dynamic, const LocalizedSettings& sett
 
 }  // namespace
 
+int influence_step(const LocalizedSettings& settings, int height) {
+    return settings.influence_step > 0 ? settings.influence_step : 4 * std::max(1, height / 480);
+}
+
 InfluenceMap estimate_influence(const FrameContext& context, const PhotonMap& dynamic,
                                 const IrradianceCache& static_cache, const LocalizedSettings& settings,
                                 float search_radius, const KeptCentreRays* kept) {
     const Camera& camera = context.frame.camera;
-    InfluenceMap map{{camera.width, camera.height, settings.influence_step}, {}};
+    InfluenceMap map{{camera.width, camera.height, influence_step(settings, camera.height)}, {}};
     const SampleGrid& grid = map.grid;
     map.values.assign(grid.size(), 0.0f);
     if (dynamic.size() == 0) return map;

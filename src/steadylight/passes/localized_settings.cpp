@@ -15,7 +15,7 @@ void validate(const LocalizedSettings& settings, const std::string& where) {
     check_setting(correction.noise_sigmas <= correction.signal_sigmas, where + "/correction/signal_sigmas",
                   "must be at least noise_sigmas");
     check_setting_range(where + "/correction/point_spacing", correction.point_spacing, 0.0f, 4.0f);
-    check_setting_range(where + "/influence_step", settings.influence_step, 1, 1024);
+    check_setting_range(where + "/influence_step", settings.influence_step, 0, 1024);
     check_setting_range(where + "/tau_lower", settings.tau_lower, 0.0f, 1e6f);
     check_setting_range(where + "/tau_upper", settings.tau_upper, 0.0f, 1e6f);
     check_setting(settings.tau_lower < settings.tau_upper, where + "/tau_upper",

@@ -32,7 +32,9 @@ struct LocalizedSettings {
     /// nearest photons, changed from frame to frame far from the moving objects and flickered
     /// (docs/localized.md "A steady correction").
     CorrectionSettings correction;
-    int influence_step = 4;  // influence estimated at every n-th pixel centre in x and y (it is smooth)
+    /// The influence is estimated at every n-th pixel centre in x and y (it is smooth); 0: chosen
+    /// by the image's height (influence_step() in influence.h).
+    int influence_step = 0;
     /// Thresholds on the influence relative to the static indirect irradiance there: below
     /// tau_lower L_t alone, above tau_upper L_y alone, smoothstep between (paper §3.3). Why these
     /// values: a density estimate of the dynamic photons from k photons has a noise of about
