@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# The README's headline: each scene rendered by the command line with the photon method and with
-# the localized method, one after the other, each from an empty folder (the static pass and the
-# writing included, as a user's first run): the whole run's wall time and their ratio. Error
-# against converged references is quality_bench's. Prints, asserts nothing.
+# The README's headline: each scene rendered by the command line with the localized method, the
+# photon method, and the localized method again, each from an empty folder (the static pass and
+# the writing included, as a user's first run): the whole runs' wall times, and the ratio of the
+# photon run to the mean of the localized runs around it. The localized run is timed on both
+# sides of the long photon run, since on a shared machine a run right after minutes of full load
+# can take a tenth longer than one before it. Error against converged references is
+# quality_bench's. Prints, asserts nothing.
 #   bash bench/methods_bench.sh [SCENE:FRAMES:SIZE[:LAYERS]...]
 #       default: ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960 ball:0-19:1280x960:terms;
 #       LAYERS is --layers for both methods (all when left out).
@@ -25,15 +28,16 @@ render_s() {  # SCENE FRAMES SIZE LAYERS METHOD
   echo $(( ($(date +%s%N) - start) / 1000000 ))
 }
 
-printf '%-7s %-7s %-10s %-7s %12s %12s %10s\n' scene frames size layers photon localized ratio
-# Milliseconds as seconds, and the ratio of two.
+printf '%-7s %-7s %-10s %-7s %12s %22s %10s\n' scene frames size layers photon 'localized (before, after)' ratio
+# Milliseconds as seconds, and the ratio of the first to the mean of the other two.
 seconds() { python3 -c "print(f'{$1 / 1000:.1f}')"; }
-ratio() { python3 -c "print(f'{$1 / $2:.2f}')"; }
+ratio() { python3 -c "print(f'{$1 / (($2 + $3) / 2):.2f}')"; }
 for run in "${runs[@]}"; do
   IFS=: read -r scene frames size layers <<< "$run"
   layers=${layers:-all}
+  before=$(render_s "$scene" "$frames" "$size" "$layers" localized)
   photon=$(render_s "$scene" "$frames" "$size" "$layers" photon)
-  localized=$(render_s "$scene" "$frames" "$size" "$layers" localized)
-  printf '%-7s %-7s %-10s %-7s %10s s %10s s %9sx\n' "$scene" "$frames" "$size" "$layers" "$(seconds "$photon")" \
-    "$(seconds "$localized")" "$(ratio "$photon" "$localized")"
+  after=$(render_s "$scene" "$frames" "$size" "$layers" localized)
+  printf '%-7s %-7s %-10s %-7s %10s s %11s s, %6s s %9sx\n' "$scene" "$frames" "$size" "$layers" \
+    "$(seconds "$photon")" "$(seconds "$before")" "$(seconds "$after")" "$(ratio "$photon" "$before" "$after")"
 done
