@@ -2,10 +2,10 @@
 # The README's headline: each scene rendered by the command line with the localized method, the
 # photon method, and the localized method again, each from an empty folder (the static pass and
 # the writing included, as a user's first run): the whole runs' wall times, and the ratio of the
-# photon run to the mean of the localized runs around it. The localized run is timed on both
-# sides of the long photon run, since on a shared machine a run right after minutes of full load
-# can take a tenth longer than one before it. Error against converged references is
-# quality_bench's. Prints, asserts nothing.
+# photon run to the mean of the localized runs around it. The short localized run is timed on
+# both sides of the long photon run, since on a shared machine its time wanders by a tenth or
+# more from minute to minute, and one run would pair it with a single minute. Error against
+# converged references is quality_bench's. Prints, asserts nothing.
 #   bash bench/methods_bench.sh [SCENE:FRAMES:SIZE[:LAYERS]...]
 #       default: ball:0-59:320x240 table:0-29:320x240 ball:0-19:1280x960 ball:0-19:1280x960:terms;
 #       LAYERS is --layers for both methods (all when left out).
