@@ -253,6 +253,12 @@ const std::vector<WeightedRecord>& usable_records(const SphereGrid& index, const
     return used;
 }
 
+/// The ids of `used`, in its order.
+void ids_of(const std::vector<WeightedRecord>& used, std::vector<uint32_t>& out) {
+    out.resize(used.size());
+    for (size_t i = 0; i < used.size(); ++i) out[i] = used[i].id;
+}
+
 /// Ward's interpolation at (p, n) over `used`, the records usable there with their weights.
 Rgb weighted_sum(const std::vector<IrradianceRecord>& records, const std::vector<std::array<float, 3>>& scales,
                  const std::vector<WeightedRecord>& used, Vec3 p, Vec3 n) {
@@ -329,16 +335,16 @@ IrradianceCache IrradianceCache::with_irradiance(std::vector<IrradianceRecord> r
     return out;
 }
 
-std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scale) const {
+std::optional<Rgb> IrradianceCache::interpolate(Vec3 p, Vec3 n, float reach_scale,
+                                                std::vector<uint32_t>* used_ids) const {
     const std::vector<WeightedRecord>& used = m_index->usable(m_records, m_settings.accuracy, p, n, reach_scale);
+    if (used_ids) ids_of(used, *used_ids);
     if (used.empty()) return std::nullopt;
     return weighted_sum(m_records, m_gradient_scales, used, p, n);
 }
 
 void IrradianceCache::usable_ids(Vec3 p, Vec3 n, float reach_scale, std::vector<uint32_t>& out) const {
-    const std::vector<WeightedRecord>& used = m_index->usable(m_records, m_settings.accuracy, p, n, reach_scale);
-    out.resize(used.size());
-    for (size_t i = 0; i < used.size(); ++i) out[i] = used[i].id;
+    ids_of(m_index->usable(m_records, m_settings.accuracy, p, n, reach_scale), out);
 }
 
 Rgb IrradianceCache::interpolate_over(std::span<const uint32_t> ids, Vec3 p, Vec3 n) const {

@@ -46,8 +46,10 @@ public:
     /// \brief Irradiance at `p` with unit normal `n`, interpolated from the records whose weight
     /// exceeds 1 / accuracy, with gradient extrapolation. std::nullopt when no record qualifies.
     /// `reach_scale` in [1, 2] lets records reach further (1 / (accuracy * reach_scale)), for a
-    /// second try before gathering anew.
-    std::optional<Rgb> interpolate(Vec3 p, Vec3 n, float reach_scale = 1) const;
+    /// second try before gathering anew. `used_ids`, when given, gets the ids of the records it
+    /// used (usable_ids), empty with std::nullopt.
+    std::optional<Rgb> interpolate(Vec3 p, Vec3 n, float reach_scale = 1,
+                                   std::vector<uint32_t>* used_ids = nullptr) const;
 
     /// The records interpolate(p, n, reach_scale) uses, by id in ascending order (empty: none).
     void usable_ids(Vec3 p, Vec3 n, float reach_scale, std::vector<uint32_t>& out) const;

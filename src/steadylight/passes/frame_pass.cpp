@@ -173,9 +173,9 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
     const PointFallbacks fallback = make_point_fallbacks(context, lighting.irradiance, max_radius, photon.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     const auto interpolate_or_gather = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
-                                           const PixelSample& pixel) {
+                                           const PixelSample& pixel, std::vector<uint32_t>* used_ids = nullptr) {
         std::atomic<long> gathered = 0, rays = 0;
-        const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays);
+        const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays, used_ids);
         if (gathered && pixel.recorder) pixel.recorder->add_flags(pixel.pixel_index, PixelRecorder::gather);
         fallbacks += gathered, gather_rays += rays;
         return E;
@@ -184,11 +184,20 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
         const float I = on_dynamic ? 0.0f : influence_at(lighting, pixel.x, pixel.y);
         const float weight = on_dynamic ? 1.0f : (lighting.frozen ? 0.0f : blend_weight(I, localized));
+        // A recorder that keeps look-ups is told the corrected records L_t's interpolated, found here.
+        thread_local std::vector<uint32_t> L_t_ids;
+        const bool tell_ids = pixel.recorder && weight < 1;
+        bool looked_up = false;
         const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
+            looked_up = true;
             return PixelMemo::Values{weight > 0 ? interpolate_or_gather(lighting.dynamic_cache, sp, n, pixel) : Rgb{},
-                                     weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel) : Rgb{},
+                                     weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel,
+                                                                        tell_ids ? &L_t_ids : nullptr)
+                                                : Rgb{},
                                      Rgb{}};
         });
+        if (tell_ids && looked_up && pixel.memo && pixel.memo->last_used() >= 0)
+            pixel.recorder->add_look_up_records(pixel.pixel_index, pixel.memo->last_used(), L_t_ids);
         if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
         return L_y * weight + L_t * (1 - weight);
     };

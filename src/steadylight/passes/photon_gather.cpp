@@ -168,11 +168,11 @@ Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& 
 
 Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
                       const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather,
-                      std::atomic<long>& fallbacks, std::atomic<long>& gather_rays) {
-    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n)) return *E;
+                      std::atomic<long>& fallbacks, std::atomic<long>& gather_rays, std::vector<uint32_t>* used_ids) {
+    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n, 1, used_ids)) return *E;
     // Between records after neighbour clamping, or inside a pixel off its centre: let the
     // records reach twice as far before gathering anew.
-    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n, 2)) return *E;
+    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n, 2, used_ids)) return *E;
     // Not covered (a point seen only through a mirror): gather here without keeping the record.
     const GatherResult g = gather(sp, n);
     ++fallbacks;

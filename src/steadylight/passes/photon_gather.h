@@ -81,9 +81,11 @@ PointFallbacks make_point_fallbacks(const FrameContext& context, const Irradianc
 
 /// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
 /// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.
+/// `used_ids`, when given, gets the ids of the records interpolated (empty after a gather).
 Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
                       const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather,
-                      std::atomic<long>& fallbacks, std::atomic<long>& gather_rays);
+                      std::atomic<long>& fallbacks, std::atomic<long>& gather_rays,
+                      std::vector<uint32_t>* used_ids = nullptr);
 
 /// 1 at the pixels where records project, 0 elsewhere (paper Fig. 3).
 Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records);

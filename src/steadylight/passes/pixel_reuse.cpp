@@ -204,7 +204,14 @@ PixelSource::Shading StaticFrameMaker::begin(int, int, size_t pixel, PixelSums&)
     pending.look_ups = 0;
     pending.albedos.clear();
     pending.rays.clear();
+    pending.has_ids.fill(false);
     return Shading::all;
+}
+
+void StaticFrameMaker::add_look_up_records(size_t pixel, int entry, const std::vector<uint32_t>& ids) {
+    Pending& pending = m_pending[m_out.tile_of(pixel)];
+    pending.ids[size_t(entry)] = ids;
+    pending.has_ids[size_t(entry)] = true;
 }
 
 void StaticFrameMaker::add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) {
@@ -252,9 +259,12 @@ void StaticFrameMaker::finish(size_t pixel, PixelSums& sums) {
         for (int i = 0; i < pending.look_ups; ++i) {
             // The records its look-up used: at the first reach that found any, as shading looks up.
             const Vec3 p = pending.p[size_t(i)], n = pending.n[size_t(i)];
-            m_records.usable_ids(p, n, 1, pending.ids);
-            if (pending.ids.empty()) m_records.usable_ids(p, n, 2, pending.ids);
-            append(bytes, p), append(bytes, n), append(bytes, record_set(tile, pending.ids));
+            std::vector<uint32_t>& ids = pending.ids[size_t(i)];
+            if (!pending.has_ids[size_t(i)]) {
+                m_records.usable_ids(p, n, 1, ids);
+                if (ids.empty()) m_records.usable_ids(p, n, 2, ids);
+            }
+            append(bytes, p), append(bytes, n), append(bytes, record_set(tile, ids));
         }
         for (const Rgb albedo : pending.albedos) append(bytes, albedo);
         // Most pixels' camera rays all look up one point under one albedo.

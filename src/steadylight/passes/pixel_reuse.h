@@ -200,6 +200,7 @@ public:
     void add_flags(size_t pixel, uint8_t flags) override { m_out.m_pixels[pixel].trace.flags |= flags; }
     void add_surface_ray(size_t pixel) override { ++m_out.m_pixels[pixel].trace.surface_rays; }
     void add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) override;
+    void add_look_up_records(size_t pixel, int entry, const std::vector<uint32_t>& ids) override;
 
 private:
     /// The look-ups of the pixel a tile is shading, until finish() packs them.
@@ -208,7 +209,9 @@ private:
         int look_ups = 0;
         std::vector<Rgb> albedos;
         std::vector<uint8_t> rays;
-        std::vector<uint32_t> ids;
+        // Per look-up, the records it interpolated when shading said (has_ids), else found in finish().
+        std::array<std::vector<uint32_t>, PixelMemo::capacity> ids;
+        std::array<bool, PixelMemo::capacity> has_ids{};
     };
     /// The distinct sets of records a tile's look-ups interpolated, until its last pixel is
     /// finished and they are packed (so that only the tiles being shaded hold them unpacked), and

@@ -111,6 +111,9 @@ public:
     /// Camera ray `sample`'s indirect light is the look-up at (p, n), entry `entry` of its
     /// pixel's memo, times `albedo_over_pi`.
     virtual void add_look_up(size_t pixel, int sample, int entry, Vec3 p, Vec3 n, Rgb albedo_over_pi) = 0;
+    /// The ids of the records the look-up of memo entry `entry` interpolated, when the method
+    /// has them at hand (IrradianceCache::usable_ids at the first reach that found any).
+    virtual void add_look_up_records(size_t /*pixel*/, int /*entry*/, const std::vector<uint32_t>& /*ids*/) {}
 };
 
 /// Where shade_frame() takes a pixel's values from when it does not shade every pixel anew
