@@ -184,7 +184,7 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         const bool on_dynamic = context.scene.object(sp.object).is_dynamic();
         const float I = on_dynamic ? 0.0f : influence_at(lighting, pixel.x, pixel.y);
         const float weight = on_dynamic ? 1.0f : (lighting.frozen ? 0.0f : blend_weight(I, localized));
-        // A recorder that keeps look-ups is told the corrected records L_t's interpolated, found here.
+        // A recorder that keeps look-ups is told which corrected records L_t was interpolated from.
         thread_local std::vector<uint32_t> L_t_ids;
         const bool tell_ids = pixel.recorder && weight < 1;
         bool looked_up = false;

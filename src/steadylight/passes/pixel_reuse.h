@@ -209,7 +209,7 @@ private:
         int look_ups = 0;
         std::vector<Rgb> albedos;
         std::vector<uint8_t> rays;
-        // Per look-up, the records it interpolated when shading said (has_ids), else found in finish().
+        // Per look-up, the records it interpolated: as shading told them (has_ids), else found in finish().
         std::array<std::vector<uint32_t>, PixelMemo::capacity> ids;
         std::array<bool, PixelMemo::capacity> has_ids{};
     };
