@@ -5,16 +5,27 @@
 #include <vector>
 
 #include "steadylight/base/color.h"
+#include "steadylight/base/unfilled_allocator.h"
 
 namespace steadylight {
 
 struct Image {
     int width = 0;
     int height = 0;
-    std::vector<Rgb> pixels;
+    std::vector<Rgb, UnfilledAllocator<Rgb>> pixels;
 
     Image() = default;
-    Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h)) {}
+    /// A black image.
+    Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h), Rgb{}) {}
+    /// An image whose every pixel the caller writes before anything reads it. Not zeroed first:
+    /// at production sizes that is a serial pass over tens of megabytes, mostly page faults,
+    /// while the threads that fill the image touch its memory anyway.
+    static Image unfilled(int w, int h) {
+        Image image;
+        image.width = w, image.height = h;
+        image.pixels.resize(size_t(w) * size_t(h));
+        return image;
+    }
     Rgb& at(int x, int y) { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
     const Rgb& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
 };

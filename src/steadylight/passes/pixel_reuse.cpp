@@ -188,7 +188,8 @@ StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, in
     const Camera& camera = frame.camera;
     out.made_at = frame;
     out.width = camera.width, out.height = camera.height, out.samples = samples;
-    out.m_pixels.assign(size_t(camera.width) * size_t(camera.height), {});
+    out.m_pixels.clear();
+    out.m_pixels.resize(size_t(camera.width) * size_t(camera.height));  // each made by begin()
     out.m_tiles_x = (camera.width + shading_tile_size - 1) / shading_tile_size;
     out.m_inverse_width = 1.0 / camera.width;
     const size_t tiles = size_t(out.m_tiles_x) * size_t((camera.height + shading_tile_size - 1) / shading_tile_size);
@@ -200,6 +201,7 @@ StaticFrameMaker::StaticFrameMaker(StaticFrame& out, const FrameState& frame, in
 }
 
 PixelSource::Shading StaticFrameMaker::begin(int, int, size_t pixel, PixelSums&) {
+    m_out.m_pixels[pixel] = {};
     Pending& pending = m_pending[m_out.tile_of(pixel)];
     pending.look_ups = 0;
     pending.albedos.clear();

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "steadylight/base/bounding_sphere.h"
+#include "steadylight/base/unfilled_allocator.h"
 #include "steadylight/irradiance/irradiance_cache.h"
 #include "steadylight/passes/shading_pass.h"
 
@@ -165,9 +166,9 @@ private:
     size_t tile_of(size_t pixel) const;
     const std::byte* values_of(size_t pixel) const { return m_tiles[tile_of(pixel)].data() + m_pixels[pixel].at; }
 
-    std::vector<KeptPixel> m_pixels;
-    std::vector<std::vector<std::byte>> m_tiles;     // per shading tile, row by row
-    std::vector<TileRecordSets> m_tile_record_sets;  // per shading tile
+    std::vector<KeptPixel, UnfilledAllocator<KeptPixel>> m_pixels;  // each made by StaticFrameMaker::begin
+    std::vector<std::vector<std::byte>> m_tiles;                    // per shading tile, row by row
+    std::vector<TileRecordSets> m_tile_record_sets;                 // per shading tile
     int m_tiles_x = 0;
     double m_inverse_width = 0;  // 1 / width, for tile_of
 };

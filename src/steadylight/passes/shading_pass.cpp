@@ -346,9 +346,9 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
     const Camera& camera = context.frame.camera;
     ShadedFrame out;
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular})
-        *image = Image(camera.width, camera.height);
-    for (int e = 0; e < extra_layers; ++e) out.extra[size_t(e)] = Image(camera.width, camera.height);
-    if (camera.transparent_background) out.alpha = Image(camera.width, camera.height);
+        *image = Image::unfilled(camera.width, camera.height);  // every pixel written below
+    for (int e = 0; e < extra_layers; ++e) out.extra[size_t(e)] = Image::unfilled(camera.width, camera.height);
+    if (camera.transparent_background) out.alpha = Image::unfilled(camera.width, camera.height);
     const int n = settings.samples_per_pixel;
     const Shader shader(context, settings, caustic, indirect, reflected, visibility, extra_layers);
     PixelRecorder* const recorder = source ? source->recorder() : nullptr;
