@@ -1,7 +1,10 @@
 // The renderer's parallel loops, over oneTBB. Work is split by index only, so results never
-// depend on how many threads run or how TBB schedules them. Every tile and chunk is a checkpoint
-// (base/checkpoint.h): it reports progress, and after an interrupt the loop throws
-// RenderInterrupted instead of running the rest.
+// depend on how many threads run or how TBB schedules them. Each tile or chunk is a task of its
+// own (TBB's simple partitioner): the default groups them into ranges that are split only when a
+// thread steals, and a loop then ends with one thread working through a range of costly tiles,
+// such as a localized frame's last rows under a moving object, while the others wait. Every tile
+// and chunk is a checkpoint (base/checkpoint.h): it reports progress, and after an interrupt the
+// loop throws RenderInterrupted instead of running the rest.
 #pragma once
 
 #include <functional>
