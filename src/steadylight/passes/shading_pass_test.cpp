@@ -1,9 +1,16 @@
 // The shading pass (shading_pass.h) on scenes with known answers: the light a glossy floor sees
-// in a flat mirror (shading/mirror_images.h) taken as its image's direct light.
+// in a flat mirror (shading/mirror_images.h) taken as its image's direct light; and every pixel
+// of the images it returns written, as their unfilled memory needs.
 #include "steadylight/passes/shading_pass.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "support/freed_blocks.h"
 #include "support/scene_builder.h"
 
 namespace steadylight {
@@ -11,6 +18,7 @@ namespace {
 
 using testing::add_material;
 using testing::add_object;
+using testing::leave_in_freed_blocks;
 using testing::make_empty_scene;
 
 /// A glossy floor (y = 0, x in [0, 4]) under a small light at x = 2, seen looking towards x = 0
@@ -62,6 +70,45 @@ TEST(MirrorImages, GlossyFloorTakesTheLightInAMirrorAsItsImagesDirectLight) {
     const double light = mean_direct_light(light_alone), image = mean_direct_light(image_alone);
     EXPECT_GT(image, light);  // the image's share is large enough to test
     EXPECT_NEAR(with_mirror / (light + image), 1, 0.01);
+}
+
+/// Every image of a frame, in a fixed order.
+std::vector<const Image*> images_of(const ShadedFrame& frame, int extra_layers) {
+    std::vector<const Image*> images{&frame.beauty, &frame.direct, &frame.indirect, &frame.caustic, &frame.specular};
+    for (int e = 0; e < extra_layers; ++e) images.push_back(&frame.extra[size_t(e)]);
+    if (frame.alpha) images.push_back(&*frame.alpha);
+    return images;
+}
+
+// shade_frame's images are made unfilled (base/unfilled_allocator.h), so a pixel it did not write
+// would show what the memory held before: the same frame shaded after the heap held NaNs and
+// after it held ones is the same, bit for bit, in every image, and finite.
+TEST(ShadeFrame, WritesEveryPixelOfEveryImage) {
+    SceneDesc desc = glossy_floor_beside(true);
+    desc.camera.transparent_background = true;  // the alpha image too
+    const Scene scene(desc);
+    const PreparedFrame frame(scene, 0);
+    ShadingSettings settings;
+    settings.samples_per_pixel = 4;
+    const auto none = [](auto&&...) { return Rgb{}; };
+    const auto some = [](auto&&...) { return Rgb{0.25f, 0.5f, 0.75f}; };
+    const int extra_layers = 2;
+    const size_t pixels = size_t(desc.camera.width) * size_t(desc.camera.height);
+    const auto shade_after = [&](float left) {
+        leave_in_freed_blocks(pixels, left);
+        return shade_frame(frame.context(), settings, PhotonMap{}, some, none, Visibility::everything, nullptr,
+                           extra_layers);
+    };
+    const ShadedFrame after_nan = shade_after(std::numeric_limits<float>::quiet_NaN());
+    const ShadedFrame after_one = shade_after(1);
+    const std::vector<const Image*> a = images_of(after_nan, extra_layers), b = images_of(after_one, extra_layers);
+    ASSERT_EQ(a.size(), size_t(5 + extra_layers + 1));
+    for (size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i]->pixels.size(), pixels) << "image " << i;
+        ASSERT_EQ(b[i]->pixels.size(), pixels) << "image " << i;
+        EXPECT_EQ(std::memcmp(a[i]->pixels.data(), b[i]->pixels.data(), pixels * sizeof(Rgb)), 0) << "image " << i;
+        for (const Rgb& c : a[i]->pixels) ASSERT_TRUE(std::isfinite(c.r + c.g + c.b)) << "image " << i;
+    }
 }
 
 }  // namespace
