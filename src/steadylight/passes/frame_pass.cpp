@@ -418,7 +418,15 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
                                  influence, photon, localized, stats);
         PixelReuse reuse(*base, plan);
         set_reused_values(reuse, lighting, analysis);
-        return shade_localized(context, lighting, photon, localized, Visibility::everything, analysis, &reuse, stats);
+        const Camera& camera = context.frame.camera;
+        solution.kept_direct_light->make(
+            camera.width, camera.height, photon.shading.samples_per_pixel, photon.shading.direct_samples,
+            KeptDirectLight::max_bytes_per_pixel * double(camera.width) * double(camera.height));
+        reuse.keep_direct_light(*solution.kept_direct_light, context.tracer);
+        ShadedFrame reused =
+            shade_localized(context, lighting, photon, localized, Visibility::everything, analysis, &reuse, stats);
+        stats.pixels_direct_from_kept = reuse.direct_from_kept();
+        return reused;
     });
     stats.caustics_s = shaded.caustic_cpu_s;
 

@@ -47,6 +47,7 @@ void for_each_later_json_field(Stats& s, Visit&& visit) {
     visit("/pixels/reused", s.pixels_reused);
     visit("/pixels/looked_up_again", s.pixels_looked_up_again);
     visit("/pixels/direct_again", s.pixels_direct_again);
+    visit("/pixels/direct_from_kept", s.pixels_direct_from_kept);
     visit("/pixels/redone_but_direct", s.pixels_redone_but_direct);
     visit("/pixels/redone", s.pixels_redone);
     visit("/pixels/changed_camera", s.pixels_changed[0]);
@@ -74,10 +75,10 @@ std::string summarize_photon_mapping(const FrameStats& s) {
                             s.pixels_redone_but_direct + s.pixels_redone) {
         const auto share = [&](long part) { return 100.0 * double(part) / double(pixels); };
         text += fmt::format(
-            "pixels reused {:.1f}%, looked up again {:.1f}%, direct again {:.1f}%, redone but direct {:.1f}%, "
-            "redone {:.1f}%, ",
+            "pixels reused {:.1f}%, looked up again {:.1f}%, direct again {:.1f}% ({:.1f}% from kept samples), "
+            "redone but direct {:.1f}%, redone {:.1f}%, ",
             share(s.pixels_reused), share(s.pixels_looked_up_again), share(s.pixels_direct_again),
-            share(s.pixels_redone_but_direct), share(s.pixels_redone));
+            share(s.pixels_direct_from_kept), share(s.pixels_redone_but_direct), share(s.pixels_redone));
     }
     return text + fmt::format("shading {:.2f} s (caustics {:.2f} s cpu)", s.shading_s, s.caustics_s);
 }

@@ -27,6 +27,7 @@ struct FrameStats {
     long pixels_reused = 0;                // localized, still camera: pixels taken from the static frame,
     long pixels_looked_up_again = 0;       // their indirect light looked up again, no ray traced,
     long pixels_direct_again = 0;          // only their direct light shaded again,
+    long pixels_direct_from_kept = 0;      // (of those, summed from an earlier frame's light samples)
     long pixels_redone_but_direct = 0;     // shaded again without shadow rays,
     long pixels_redone = 0;                // and shaded again whole (all zero: no static frame)
     std::array<long, 4> pixels_changed{};  // pixels whose camera, direct, indirect, caustic term changed

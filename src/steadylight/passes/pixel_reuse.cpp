@@ -361,11 +361,26 @@ PixelSource::Shading PixelReuse::begin(int x, int y, size_t pixel, PixelSums& su
     if (work == PixelWork::look_up_again ||
         (work == PixelWork::direct_again && (m_plan.changed[pixel] & indirect_term)))
         look_up_again(x, y, pixel, sums);
-    return work == PixelWork::direct_again ? Shading::direct_only : Shading::none;
+    if (work != PixelWork::direct_again) return Shading::none;
+    if (const std::byte* kept = m_kept ? m_kept->find(x, y) : nullptr) {
+        sums.direct = m_kept->direct_light(kept, *m_tracer);
+        ++m_direct_from_kept;
+        return Shading::none;
+    }
+    return Shading::direct_only;
+}
+
+DirectLightLog* PixelReuse::direct_light_log(int x, int y, size_t pixel) {
+    return m_kept && m_plan.work[pixel] == PixelWork::direct_again ? m_kept->log_for(x, y, pixel) : nullptr;
 }
 
 void PixelReuse::finish(size_t pixel, PixelSums& sums) {
-    if (m_plan.work[pixel] == PixelWork::redo_but_direct) sums.direct = m_base.direct(pixel);
+    const PixelWork work = m_plan.work[pixel];
+    if (work == PixelWork::redo_but_direct) sums.direct = m_base.direct(pixel);
+    if (work == PixelWork::direct_again && m_kept) {
+        const int x = int(pixel % size_t(m_base.width)), y = int(pixel / size_t(m_base.width));
+        m_kept->keep(x, y, pixel);
+    }
 }
 
 namespace {

@@ -31,6 +31,7 @@
 #include "steadylight/base/bounding_sphere.h"
 #include "steadylight/base/unfilled_allocator.h"
 #include "steadylight/irradiance/irradiance_cache.h"
+#include "steadylight/passes/kept_direct_light.h"
 #include "steadylight/passes/shading_pass.h"
 
 namespace steadylight {
@@ -274,13 +275,24 @@ public:
     /// (and a PixelWork::direct_again pixel's whose indirect term changed).
     std::function<void(int x, int y, size_t index, PixelSums& sums)> look_up_again;
 
+    /// Keeps the direct light of PixelWork::direct_again pixels in `kept` as the frame shades it,
+    /// and sums it from there where an earlier frame kept it, asking `tracer` (placed at the
+    /// frame) about the dynamic objects alone.
+    void keep_direct_light(KeptDirectLight& kept, const RayTracer& tracer) { m_kept = &kept, m_tracer = &tracer; }
+    /// PixelWork::direct_again pixels whose direct light came from `kept`, so far.
+    long direct_from_kept() const { return m_direct_from_kept; }
+
     const StaticFrame& base() const { return m_base; }
     Shading begin(int x, int y, size_t pixel, PixelSums& sums) override;
     void finish(size_t pixel, PixelSums& sums) override;
+    DirectLightLog* direct_light_log(int x, int y, size_t pixel) override;
 
 private:
     const StaticFrame& m_base;
     const PixelPlan& m_plan;
+    KeptDirectLight* m_kept = nullptr;
+    const RayTracer* m_tracer = nullptr;
+    std::atomic<long> m_direct_from_kept = 0;
 };
 
 /// What changed in a frame against its static frame.

@@ -264,6 +264,27 @@ TEST_P(PixelReuseOnScene, FramesEqualFramesShadedWhole) {
     }
 }
 
+// The pixels whose shadow rays alone may change keep their light samples as a frame shades
+// them (KeptDirectLight): the same frame shaded again sums those, asking the dynamic objects
+// alone, and is still the frame shaded whole, bit for bit.
+TEST_P(PixelReuseOnScene, FramesShadedAgainSumTheKeptLightSamples) {
+    SolvedScene solved(scene_file(GetParam(), 48, 36));
+    const int frame = solved.scene.frame_count() / 2;
+    const LocalizedFrame first = solved.render(frame);
+    EXPECT_EQ(first.stats.pixels_direct_from_kept, 0);
+    const LocalizedFrame again = solved.render(frame), whole = solved.render_whole(frame);
+    const std::string what = GetParam() + " frame " + std::to_string(frame);
+    expect_same_layers(again, whole, what);
+    expect_same_layers(again, first, what);
+    EXPECT_EQ(again.stats.pixels_direct_again, first.stats.pixels_direct_again) << what;
+    EXPECT_LE(again.stats.pixels_direct_from_kept, again.stats.pixels_direct_again) << what;
+    if (GetParam() == "ball" || GetParam() == "table" || GetParam() == "corridor") {
+        EXPECT_GT(again.stats.pixels_direct_from_kept, again.stats.pixels_direct_again / 2) << what;
+    }
+    EXPECT_LE(double(solved.solution.kept_direct_light->bytes()), KeptDirectLight::max_bytes_per_pixel * 48 * 36)
+        << what;
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, PixelReuseOnScene,
                          ::testing::Values("ball", "table", "corridor", "glass_move", "mirror_room", "blender_glass",
                                            "blender_textured", "daylit_room"),

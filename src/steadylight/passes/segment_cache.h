@@ -32,6 +32,9 @@ struct StaticSolution {
     std::shared_ptr<const CorrectionPoints> correction_points = std::make_shared<CorrectionPoints>();
     /// What the pixel centres see, made by the first frame that needs it (a still view only).
     std::shared_ptr<const KeptCentreRays> centre_rays = std::make_shared<KeptCentreRays>();
+    /// The direct light of pixels whose shadow rays alone may change, kept by the frames as they
+    /// shade it (a still view only).
+    std::shared_ptr<KeptDirectLight> kept_direct_light = std::make_shared<KeptDirectLight>();
 
     long records() const { return long(cache.records().size()); }
 };

@@ -8,6 +8,7 @@
 #include "steadylight/base/sampling.h"
 #include "steadylight/base/settings_check.h"
 #include "steadylight/base/stopwatch.h"
+#include "steadylight/passes/kept_direct_light.h"
 #include "steadylight/passes/photon_gather.h"
 #include "steadylight/shading/surface_point.h"
 
@@ -111,6 +112,7 @@ void Shader::record_distant(const PixelSample& pixel, const LightSample& light) 
 Rgb Shader::direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, const Bsdf& bsdf, Vec3 wo,
                          const LightStrata& strata, const PixelSample& pixel) const {
     Rgb sum;
+    if (pixel.direct_log) pixel.direct_log->add_ray(sp.p, sp.ng);
     for (int s = 0; s < m_settings.direct_samples; ++s) {
         // Stratified: the choice of light takes the stratified dimension and passes its
         // remainder on, so each light's area is stratified too, not only the pixel's samples.
@@ -119,9 +121,22 @@ Rgb Shader::direct_light(const SurfacePoint& sp, const OrthonormalBasis& basis, 
         if (!light) continue;
         const Vec3 wi = basis.to_local(light->wi);
         const Rgb f = bsdf.eval(wo, wi);
-        if (is_black(f) || m_context.tracer.occluded(shadow_ray(*light, sp.p, sp.ng), m_visibility)) continue;
+        if (is_black(f)) continue;
+        const Ray shadow = shadow_ray(*light, sp.p, sp.ng);
+        const Rgb value = f * light->Li * (std::abs(wi.z) / light->pdf);
+        if (pixel.direct_log) {
+            // occluded()'s two queries apart: what the static objects stop stays stopped through
+            // the segment, so only the other samples are kept, for frames that ask the dynamic
+            // objects alone.
+            if (m_context.tracer.occluded(shadow, Visibility::static_only)) continue;
+            const bool distant = std::isinf(light->distance);
+            pixel.direct_log->add_sample(distant ? light->wi : light->p, distant, value);
+            if (m_context.tracer.occluded_by_dynamic(shadow)) continue;
+        } else if (m_context.tracer.occluded(shadow, m_visibility)) {
+            continue;
+        }
         record_distant(pixel, *light);
-        sum += f * light->Li * (std::abs(wi.z) / light->pdf);
+        sum += value;
     }
     return sum / float(m_settings.direct_samples);
 }
@@ -212,6 +227,7 @@ Components Shader::shade(const Ray& ray, int depth, Emission emission, const Pix
         pixel.recorder->add_flags(pixel.pixel_index,
                                   hit ? PixelRecorder::chain : PixelRecorder::chain | PixelRecorder::open_chain);
     if (!hit) {
+        if (pixel.direct_log) pixel.direct_log->spoil();
         // The lights from far away, seen as an emitter is (light sampling took them otherwise);
         // a transparent background leaves out what the camera sees of them directly.
         Components c;
@@ -226,6 +242,7 @@ Components Shader::shade(const Ray& ray, int depth, Emission emission, const Pix
     c.covered = 1;
     // Light from a hit inside absorbing glass crossed its volume (the AOV layers are not light).
     const Rgb absorbed = volume_transmittance(m_context, surface, ray.d, hit->t);
+    if (absorbed != Rgb{1, 1, 1} && pixel.direct_log) pixel.direct_log->spoil();
     if (absorbed != Rgb{1, 1, 1})
         for (Rgb* part : {&c.direct, &c.indirect, &c.caustic, &c.specular}) *part *= absorbed;
     return c;
@@ -237,8 +254,10 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
     // An emitter seen by the camera is direct light (as bright as it is at this frame); seen
     // through a mirror the caller files it under specular.
     const Rgb Le = m_context.frame.emission[size_t(surface.object)];
-    if (emission == Emission::counted && !pixel.skip_direct && !is_black(Le))
+    if (emission == Emission::counted && !pixel.skip_direct && !is_black(Le)) {
         c.direct += emitted_radiance_at(m_context, surface, -ray.d);
+        if (pixel.direct_log) pixel.direct_log->spoil();
+    }
     const SurfacePoint sp = face_towards(surface, ray.d);
     const SurfaceBsdf surface_bsdf = bsdf_at(m_context, sp);
     const Bsdf& bsdf = *surface_bsdf;
@@ -262,6 +281,7 @@ Components Shader::shade_hit(const Ray& ray, const Hit& hit, const SurfacePoint&
         }
         return c;
     }
+    if (pixel.direct_log) pixel.direct_log->spoil();  // kept: diffuse points only
     // Glossy surfaces take direct light by light sampling; the sampled bounce then carries only
     // indirect light (emission is not counted twice). Mirrors and glass see emitters directly.
     // The BSDF is evaluated in the frame of the surface's own normals, as sample_bounce samples
@@ -375,6 +395,11 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                     pixel.pixel_index = i;
                     pixel.skip_direct = shading == PixelSource::Shading::all_but_direct;
                     pixel.direct_only = shading == PixelSource::Shading::direct_only;
+                    if (pixel.direct_only) {
+                        pixel.direct_log = source->direct_light_log(x, y, i);
+                        // Its split of the shadow rays' queries is the whole scene's.
+                        SL_CHECK(!pixel.direct_log || visibility == Visibility::everything);
+                    }
                     PixelSums shaded;
                     for (int s = 0; s < n; ++s) {
                         const Vec2 jitter = stratified_2d(uint32_t(s), uint32_t(n), shift);

@@ -22,6 +22,8 @@
 
 namespace steadylight {
 
+class DirectLightLog;
+
 struct ShadingSettings {
     int samples_per_pixel = 16;   // camera rays per pixel, stratified
     int direct_samples = 2;       // shadow rays per diffuse hit and camera ray, stratified over the pixel
@@ -137,6 +139,9 @@ public:
     virtual void finish(size_t pixel, PixelSums& sums) = 0;
     /// Told what the shading goes through, or null.
     virtual PixelRecorder* recorder() { return nullptr; }
+    /// Where a Shading::direct_only pixel's light samples are logged as it is shaded
+    /// (kept_direct_light.h), or null; asked after begin(), on the same thread.
+    virtual DirectLightLog* direct_light_log(int /*x*/, int /*y*/, size_t /*pixel*/) { return nullptr; }
 };
 
 /// Which camera ray of which pixel is being shaded.
@@ -161,6 +166,8 @@ struct PixelSample {
     bool skip_direct = false;
     /// Only the direct light: no indirect light, caustics, coat or bounces (the source's).
     bool direct_only = false;
+    /// With direct_only, where its light samples are logged (PixelSource::direct_light_log), or null.
+    DirectLightLog* direct_log = nullptr;
 };
 
 /// The values `compute()` returns at (sp, n), or those an earlier camera ray of the same pixel

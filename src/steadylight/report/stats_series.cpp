@@ -64,6 +64,7 @@ const std::vector<StatsField>& count_fields() {
         {"pixels reused", [](const FrameStats& s) { return double(s.pixels_reused); }},
         {"pixels looked up again", [](const FrameStats& s) { return double(s.pixels_looked_up_again); }},
         {"pixels direct again", [](const FrameStats& s) { return double(s.pixels_direct_again); }},
+        {"pixels direct from kept samples", [](const FrameStats& s) { return double(s.pixels_direct_from_kept); }},
         {"pixels redone but direct", [](const FrameStats& s) { return double(s.pixels_redone_but_direct); }},
         {"pixels redone", [](const FrameStats& s) { return double(s.pixels_redone); }},
         {"pixels with camera rays changed", [](const FrameStats& s) { return double(s.pixels_changed[0]); }},

@@ -17,7 +17,8 @@ namespace {
 constexpr double fixed_bytes = 64e6;
 constexpr double bytes_per_triangle = 160;
 constexpr double bytes_per_pixel_photon = 300;
-constexpr double bytes_per_pixel_localized = 500;  // localized and frozen: their dozen layers, the static frame
+// localized and frozen: their dozen layers, the static frame, its kept light samples (at most 40)
+constexpr double bytes_per_pixel_localized = 540;
 constexpr double bytes_per_pixel_path = 60;
 constexpr double bytes_per_pixel_alpha = 12;  // the alpha image of --transparent-background
 constexpr double bytes_per_photon_path = 650;

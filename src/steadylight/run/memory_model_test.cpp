@@ -34,7 +34,7 @@ TEST(MemoryModel, GrowsWithPixelsPhotonsTrianglesAndTheWorldImage) {
     EXPECT_DOUBLE_EQ(photon.scene, 2 * 160.0);
     for (const Method layered : {Method::localized, Method::frozen}) {
         settings.method = layered;
-        EXPECT_DOUBLE_EQ(estimate_memory(settings, scene).pixels, 100 * 50 * 500.0);
+        EXPECT_DOUBLE_EQ(estimate_memory(settings, scene).pixels, 100 * 50 * 540.0);
     }
     settings.method = Method::path;
     const MemoryEstimate path = estimate_memory(settings, scene);

@@ -94,9 +94,14 @@ std::unique_ptr<Light> make_world_light(const WorldDesc& desc, const BoundingSph
                                         const std::vector<PortalDesc>& portals, const DistantPhotonTargets* targets);
 
 /// The shadow ray from surface point `p` (geometric normal `ng`) towards a sampled light: to its
-/// point, or open-ended towards a light from far away.
+/// point `to`, or open-ended along direction `to` towards a light from far away (`distant`).
+inline Ray shadow_ray(Vec3 p, Vec3 ng, Vec3 to, bool distant) {
+    return distant ? spawn_ray(p, ng, to) : spawn_ray_to(p, ng, to);
+}
+/// The shadow ray towards light sample `light`.
 inline Ray shadow_ray(const LightSample& light, Vec3 p, Vec3 ng) {
-    return std::isinf(light.distance) ? spawn_ray(p, ng, light.wi) : spawn_ray_to(p, ng, light.p);
+    const bool distant = std::isinf(light.distance);
+    return shadow_ray(p, ng, distant ? light.wi : light.p, distant);
 }
 
 /// The lights whose photons a photon pass emits apart (docs/localized.md, "Lights that move"):

@@ -328,8 +328,16 @@ bool RayTracer::occluded(const Ray& ray, Visibility visibility) const {
     rtcInitIntersectContext(&context);
     RTCRay r = make_embree_ray(ray, visibility);
     rtcOccluded1(m_static_scene, &context, &r);
-    if (r.tfar == -infinity) return true;
-    if (may_hit_instances(ray, r.tfar, visibility)) rtcOccluded1(m_instance_scene, &context, &r);
+    // A ray nothing stops leaves the query as it came: the instances are asked the same ray.
+    return r.tfar == -infinity || occluded_by_instances(ray, visibility);
+}
+
+bool RayTracer::occluded_by_instances(const Ray& ray, Visibility visibility) const {
+    if (!may_hit_instances(ray, ray.tmax, visibility)) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = make_embree_ray(ray, visibility);
+    rtcOccluded1(m_instance_scene, &context, &r);
     return r.tfar == -infinity;
 }
 

@@ -58,6 +58,9 @@ public:
     /// Exactly intersect()'s own decision, without its query of the static scene: the instance
     /// query it makes next, cut at the same distance.
     bool meets_dynamic(const Ray& ray, float static_t) const;
+    /// Whether occluded(ray) holds, for a ray that occluded(ray, Visibility::static_only) does not
+    /// stop: exactly occluded()'s own decision, without its query of the static scene.
+    bool occluded_by_dynamic(const Ray& ray) const { return occluded_by_instances(ray, Visibility::everything); }
     /// A sphere about each dynamic object as placed at this frame (about its box, padded).
     const std::vector<BoundingSphere>& dynamic_bounds() const { return m_dynamic_bounds; }
 
@@ -70,6 +73,8 @@ private:
     void add_instanced_object(int object, unsigned mask);
     /// False when the ray cannot meet any instance before `tmax`, so Embree need not be asked.
     bool may_hit_instances(const Ray& ray, float tmax, Visibility visibility) const;
+    /// Whether an instance seen with `visibility` stops the ray (occluded()'s second query).
+    bool occluded_by_instances(const Ray& ray, Visibility visibility) const;
 
     /// Makes hits on the object's cut-out parts pass through (glTF alpha MASK), for every ray.
     void attach_alpha_test(RTCGeometry geometry, int object);

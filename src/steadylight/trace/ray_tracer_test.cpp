@@ -86,6 +86,37 @@ TEST(RayTracer, OcclusionStopsAtTmax) {
     EXPECT_TRUE(tracer.occluded({{0, 10, 0}, {0, -1, 0}, 7.5f}));
 }
 
+// For a ray that the static objects do not stop, occluded_by_dynamic() is occluded()'s answer:
+// rays from points on the floor to points above the sphere's path, a static ball in the way of
+// some and the moving sphere in the way of others, at three frames.
+TEST(RayTracer, OccludedByDynamicAnswersAsOccludedWhereNothingStaticStops) {
+    SceneDesc desc = floor_and_moving_sphere();
+    add_object(desc, Sphere{{-4, 1.5f, 0}, 0.75f}, 0);
+    const Scene scene(std::move(desc));
+    RayTracer tracer(scene, scene.evaluate(0));
+    long stopped_by_static = 0, stopped_by_dynamic = 0, open = 0;
+    for (const int frame : {0, 3, 9}) {
+        tracer.set_frame(scene.evaluate(frame));
+        for (int i = 0; i < 40; ++i)
+            for (int j = 0; j < 40; ++j) {
+                const Vec3 floor{-10 + 0.5f * float(i), 0, -4 + 0.2f * float(j)};
+                const Vec3 above{-2 + 0.1f * float(j), 4, 0.05f * float(i)};
+                const Ray ray = spawn_ray_to(floor, {0, 1, 0}, above);
+                if (tracer.occluded(ray, Visibility::static_only)) {
+                    EXPECT_TRUE(tracer.occluded(ray));
+                    ++stopped_by_static;
+                    continue;
+                }
+                ASSERT_EQ(tracer.occluded_by_dynamic(ray), tracer.occluded(ray)) << frame << " " << i << " " << j;
+                tracer.occluded(ray) ? ++stopped_by_dynamic : ++open;
+            }
+    }
+    // Each kind of ray is there.
+    EXPECT_GT(stopped_by_static, 100);
+    EXPECT_GT(stopped_by_dynamic, 100);
+    EXPECT_GT(open, 100);
+}
+
 TEST(RayTracer, SetFrameMovesDynamicObjects) {
     const Scene scene(floor_and_moving_sphere());
     RayTracer tracer(scene, scene.evaluate(0));
