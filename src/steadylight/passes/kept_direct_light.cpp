@@ -76,8 +76,8 @@ void KeptDirectLight::make(int width, int height, int samples, int direct_sample
     SL_CHECK(m_width == width && m_height == height && m_samples == samples && m_direct_samples == direct_samples);
 }
 
-KeptDirectLight::Tile& KeptDirectLight::tile_of(int x, int y) {
-    return m_tiles[size_t(y / shading_tile_size) * size_t(m_tiles_x) + size_t(x / shading_tile_size)];
+size_t KeptDirectLight::tile_of(int x, int y) const {
+    return size_t(y / shading_tile_size) * size_t(m_tiles_x) + size_t(x / shading_tile_size);
 }
 
 int KeptDirectLight::slot_of(int x, int y) const {
@@ -86,7 +86,7 @@ int KeptDirectLight::slot_of(int x, int y) const {
 
 DirectLightLog* KeptDirectLight::log_for(int x, int y, size_t pixel) {
     if (m_direct_samples > DirectLightLog::max_samples_per_ray || double(m_bytes) >= m_max_bytes) return nullptr;
-    Tile& tile = tile_of(x, y);
+    Tile& tile = m_tiles[tile_of(x, y)];
     const int slot = slot_of(x, y);
     if (!tile.refused.empty() && (tile.refused[size_t(slot)] || tile.kept[size_t(slot)])) return nullptr;
     tile.log.start(pixel);
@@ -94,7 +94,7 @@ DirectLightLog* KeptDirectLight::log_for(int x, int y, size_t pixel) {
 }
 
 void KeptDirectLight::keep(int x, int y, size_t pixel) {
-    Tile& tile = tile_of(x, y);
+    Tile& tile = m_tiles[tile_of(x, y)];
     if (!tile.log.logs(pixel)) return;
     tile.log.end();
     const DirectLightLog& log = tile.log;
@@ -122,7 +122,7 @@ void KeptDirectLight::keep(int x, int y, size_t pixel) {
 
 const std::byte* KeptDirectLight::find(int x, int y) const {
     if (m_tiles.empty()) return nullptr;
-    const Tile& tile = m_tiles[size_t(y / shading_tile_size) * size_t(m_tiles_x) + size_t(x / shading_tile_size)];
+    const Tile& tile = m_tiles[tile_of(x, y)];
     if (tile.kept.empty()) return nullptr;
     return tile.kept[size_t(slot_of(x, y))].get();
 }

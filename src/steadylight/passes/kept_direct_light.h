@@ -76,7 +76,8 @@ public:
     /// kept yet, not refused before, and room left; else null.
     DirectLightLog* log_for(int x, int y, size_t pixel);
     /// Keeps the log of pixel (x, y), number `pixel`, if log_for() started one, when it is whole
-    /// (each camera ray logged, none spoiled) and fits; else the pixel is not logged again.
+    /// (each camera ray logged, none spoiled) and fits. A pixel whose log is not whole is not
+    /// logged again; one that did not fit may be, while room is left.
     void keep(int x, int y, size_t pixel);
     /// Pixel (x, y)'s kept light samples, or null.
     const std::byte* find(int x, int y) const;
@@ -92,11 +93,11 @@ public:
 private:
     /// A shading tile's pixels: made when the first of them is logged.
     struct Tile {
-        DirectLightLog log;                                // the pixel being shaded
+        DirectLightLog log;                              // the pixel being shaded
         std::vector<std::unique_ptr<std::byte[]>> kept;  // per pixel of the tile, row by row in it
         std::vector<bool> refused;
     };
-    Tile& tile_of(int x, int y);
+    size_t tile_of(int x, int y) const;
     int slot_of(int x, int y) const;
 
     std::once_flag m_once;
