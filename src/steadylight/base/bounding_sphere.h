@@ -1,6 +1,6 @@
-// Bounding spheres and the conservative tests pixel reuse makes with them (passes/pixel_reuse.h):
-// whether a sphere may meet the segments between two others. Conservative means a "no" is
-// certain and a "yes" only possible.
+// Bounding spheres and the conservative tests pixel reuse (passes/pixel_reuse.h) and the ray
+// tracer's instance queries make with them: whether a sphere may meet the segments between two
+// others, or a ray. Conservative means a "no" is certain and a "yes" only possible.
 #pragma once
 
 #include <algorithm>
@@ -52,6 +52,16 @@ inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& fro
     }
     const float least = std::min({gap(0), gap(1), gap((lo + hi) / 2)});
     return least <= s.radius + slack;
+}
+
+/// Whether `s` may meet the ray o + t d for t in [0, tmax]: the ray's point nearest the centre,
+/// widened by a margin far beyond float rounding (a ten-thousandth of the distances involved).
+inline bool may_meet_ray(const BoundingSphere& s, Vec3 o, Vec3 d, float tmax) {
+    if (s.empty()) return false;
+    const Vec3 to_centre = s.center - o;
+    const float t = std::clamp(dot(to_centre, d) / std::max(length2(d), 1e-30f), 0.0f, tmax);
+    const float margin = 1e-4f * (1 + s.radius + length(to_centre) + length(o));
+    return length(o + d * t - s.center) <= s.radius + margin;
 }
 
 }  // namespace steadylight

@@ -182,7 +182,7 @@ TEST(Localized, CoarserInfluenceStepSamplesTheSameValues) {
 
 TEST(Localized, InfluenceStepGrowsWithTheImageHeight) {
     const LocalizedSettings chosen;  // influence_step 0: by the height
-    for (const auto [height, step] : {std::pair{24, 4}, {240, 4}, {480, 4}, {959, 4}, {960, 8}, {1080, 8}, {2160, 16}})
+    for (const auto& [height, step] : {std::pair{24, 4}, {240, 4}, {480, 4}, {959, 4}, {960, 8}, {1080, 8}, {2160, 16}})
         EXPECT_EQ(influence_step(chosen, height), step) << height << " rows";
     LocalizedSettings fixed;
     fixed.influence_step = 6;

@@ -59,6 +59,42 @@ TEST(BoundingSphere, SegmentsBetweenTwoSpheresThroughAThirdAreNeverMissed) {
     EXPECT_GT(no, 1500);
 }
 
+// may_meet_ray's "no" is certain, and it answers as the distance does beyond its margin: rays
+// from random points aimed into a sphere, at its surface (grazing) or anywhere, of any length,
+// their directions not unit.
+TEST(BoundingSphere, RaysThroughASphereAreNeverMissed) {
+    Pcg32 rng(11);
+    int met = 0, missed = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const BoundingSphere object = random_sphere(rng, 0.4f);
+        const Vec3 o = Vec3{rng.next_float(), rng.next_float(), rng.next_float()} * 8 - Vec3{4, 4, 4};
+        const int aim = trial % 3;
+        const Vec3 target = aim == 0   ? random_in_ball(rng, object)
+                            : aim == 1 ? object.center + sample_uniform_sphere(rng.next_vec2()) * object.radius
+                                       : o + sample_uniform_sphere(rng.next_vec2());
+        const Vec3 d = normalize(target - o) * (0.1f + 10 * rng.next_float());
+        const float tmax = rng.next_float() < 0.2f ? infinity : 12 * rng.next_float() / length(d);
+        // The oracle in double precision.
+        const double dd = double(dot(d, d)), t = std::clamp(double(dot(object.center - o, d)) / dd, 0.0, double(tmax));
+        double distance2 = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const double gap = double(o[axis]) + double(d[axis]) * t - double(object.center[axis]);
+            distance2 += gap * gap;
+        }
+        const double distance = std::sqrt(distance2);
+        const bool answer = may_meet_ray(object, o, d, tmax);
+        if (distance <= object.radius) {
+            ASSERT_TRUE(answer) << "trial " << trial;
+        } else if (distance > object.radius + 0.01) {
+            ASSERT_FALSE(answer) << "trial " << trial;
+        }
+        answer ? ++met : ++missed;
+    }
+    // Both answers are given.
+    EXPECT_GT(met, 5000);
+    EXPECT_GT(missed, 3000);
+}
+
 /// Whether the ray from `o` along unit `d` meets sphere `s` (the test's own oracle).
 bool ray_meets(const BoundingSphere& s, Vec3 o, Vec3 d) {
     const float along = std::max(0.0f, dot(s.center - o, d));

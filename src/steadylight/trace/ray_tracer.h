@@ -90,6 +90,7 @@ private:
     Vec3 m_instance_bounds_lo, m_instance_bounds_hi;  // of the instance scene at this frame; empty if none
     std::vector<BoundingSphere> m_object_bounds;      // per object, in its own space (instanced objects only)
     std::vector<BoundingSphere> m_dynamic_bounds;     // the dynamic objects' at this frame
+    bool m_spheres_bound_instances = false;           // every instance is dynamic: m_dynamic_bounds bound them
 };
 
 /// One flat Embree scene holding every object placed as at `frame`, for the benchmark that
