@@ -65,17 +65,18 @@ void KeptLookUps::records(int look_up, std::vector<uint32_t>& out) const {
     m_record_sets->get(record_set(look_up), out);
 }
 
-std::vector<uint64_t> TileRecordSets::marked(const std::vector<uint8_t>& records) const {
-    std::vector<uint64_t> bits_marked(size_t(words), 0);
+std::vector<uint8_t> TileRecordSets::sets_meeting(const std::vector<uint8_t>& records) const {
+    std::vector<uint64_t> marked(size_t(words), 0);
     for (size_t i = 0; i < ids.size(); ++i)
-        if (records[ids[i]]) bits_marked[i / 64] |= uint64_t(1) << (i % 64);
-    return bits_marked;
-}
-
-bool TileRecordSets::meets(int set, const std::vector<uint64_t>& marked) const {
-    for (int word = 0; word < words; ++word)
-        if (bits[size_t(set * words + word)] & marked[size_t(word)]) return true;
-    return false;
+        if (records[ids[i]]) marked[i / 64] |= uint64_t(1) << (i % 64);
+    std::vector<uint8_t> meeting(size_t(sets), 0);
+    for (int set = 0; set < sets; ++set)
+        for (int word = 0; word < words; ++word)
+            if (bits[size_t(set * words + word)] & marked[size_t(word)]) {
+                meeting[size_t(set)] = 1;
+                break;
+            }
+    return meeting;
 }
 
 void TileRecordSets::get(int set, std::vector<uint32_t>& out) const {
@@ -100,6 +101,7 @@ TileRecordSets TileRecordSets::of(const std::vector<uint32_t>& sets) {
     packed.ids.erase(std::unique(packed.ids.begin(), packed.ids.end()), packed.ids.end());
     packed.ids.shrink_to_fit();
     packed.words = int((packed.ids.size() + 63) / 64);
+    packed.sets = int(count);
     packed.bits.assign(count * size_t(packed.words), 0);
     for_each_set([&](size_t set, auto first, auto last) {
         for (auto id = first; id != last; ++id) {
@@ -157,20 +159,20 @@ KeptLookUps StaticFrame::look_ups(size_t pixel) const {
             kept.same_rays, &m_tile_record_sets[tile_of(pixel)]};
 }
 
-std::vector<std::vector<uint64_t>> StaticFrame::marked_records(const std::vector<uint8_t>& records) const {
-    std::vector<std::vector<uint64_t>> marked(m_tile_record_sets.size());
+std::vector<std::vector<uint8_t>> StaticFrame::marked_sets(const std::vector<uint8_t>& records) const {
+    std::vector<std::vector<uint8_t>> marked(m_tile_record_sets.size());
     parallel_for_chunks(long(marked.size()), 64, [&](long begin, long end) {
         for (long tile = begin; tile < end; ++tile)
-            marked[size_t(tile)] = m_tile_record_sets[size_t(tile)].marked(records);
+            marked[size_t(tile)] = m_tile_record_sets[size_t(tile)].sets_meeting(records);
     });
     return marked;
 }
 
-bool StaticFrame::interpolates_marked(size_t pixel, const std::vector<std::vector<uint64_t>>& marked) const {
+bool StaticFrame::interpolates_marked(size_t pixel, const std::vector<std::vector<uint8_t>>& marked_sets) const {
     const KeptLookUps kept = look_ups(pixel);
-    const size_t tile = tile_of(pixel);
+    const std::vector<uint8_t>& tile_sets = marked_sets[tile_of(pixel)];
     for (int i = 0; i < kept.count(); ++i)
-        if (m_tile_record_sets[tile].meets(kept.record_set(i), marked[tile])) return true;
+        if (tile_sets[size_t(kept.record_set(i))]) return true;
     return false;
 }
 
@@ -551,9 +553,9 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
     PixelPlan plan;
     plan.work.resize(pixels);
     plan.changed.assign(pixels, 0);
-    const std::vector<std::vector<uint64_t>> changed_records = changes.changed_records.empty()
-                                                                   ? std::vector<std::vector<uint64_t>>{}
-                                                                   : base.marked_records(changes.changed_records);
+    const std::vector<std::vector<uint8_t>> changed_sets = changes.changed_records.empty()
+                                                               ? std::vector<std::vector<uint8_t>>{}
+                                                               : base.marked_sets(changes.changed_records);
     const ShadowFreeTiles shadow_free(camera, base, changes);
     std::mutex counts_lock;
     // Row by row: a pixel's tile comes from its x and y, and each range of rows adds its counts.
@@ -596,7 +598,7 @@ PixelPlan plan_pixels(const Camera& camera, const StaticFrame& base, const Frame
                                        !(trace.flags & (PixelRecorder::chain | PixelRecorder::coat |
                                                         PixelRecorder::gather | PixelRecorder::unkept));
                 if (looked_up && !(changed & (camera_term | caustic_term)) && !changes.changed_records.empty() &&
-                    !base.interpolates_marked(i, changed_records))
+                    !base.interpolates_marked(i, changed_sets))
                     changed &= uint8_t(~indirect_term);
                 // Only the direct light shaded again where the camera rays meet what they met (no
                 // chains either) and the other terms are the static frame's or looked up again.

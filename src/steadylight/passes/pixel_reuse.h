@@ -58,14 +58,12 @@ struct PixelTrace {
 struct TileRecordSets {
     std::vector<uint32_t> ids;
     std::vector<uint64_t> bits;  // `words` words a set
-    int words = 0;
+    int words = 0, sets = 0;
 
     /// The ids of set `set`, ascending.
     void get(int set, std::vector<uint32_t>& out) const;
-    /// Bits over `ids`: which of them `records` marks (non-zero at a record's id).
-    std::vector<uint64_t> marked(const std::vector<uint8_t>& records) const;
-    /// Whether set `set` holds a record of `marked` (marked()).
-    bool meets(int set, const std::vector<uint64_t>& marked) const;
+    /// Per set, 1 where it holds a record that `records` marks (non-zero at a record's id).
+    std::vector<uint8_t> sets_meeting(const std::vector<uint8_t>& records) const;
     /// Packs `sets`: each set's size, then its ids, ascending.
     static TileRecordSets of(const std::vector<uint32_t>& sets);
     size_t bytes() const { return ids.capacity() * sizeof(uint32_t) + bits.capacity() * sizeof(uint64_t); }
@@ -138,11 +136,12 @@ public:
     /// sums(pixel).direct, without unpacking the others.
     Rgb direct(size_t pixel) const;
     KeptLookUps look_ups(size_t pixel) const;
-    /// Per shading tile, which of the records its look-ups interpolated `records` marks (non-zero
-    /// at a record's id): for interpolates_marked().
-    std::vector<std::vector<uint64_t>> marked_records(const std::vector<uint8_t>& records) const;
-    /// Whether a look-up of the pixel interpolated a record of `marked` (marked_records()).
-    bool interpolates_marked(size_t pixel, const std::vector<std::vector<uint64_t>>& marked) const;
+    /// Per shading tile, per record set of its look-ups, whether the set holds a record that
+    /// `records` marks (non-zero at a record's id): for interpolates_marked(). Once a tile and set,
+    /// not once a pixel: neighbouring pixels mostly share their sets.
+    std::vector<std::vector<uint8_t>> marked_sets(const std::vector<uint8_t>& records) const;
+    /// Whether a look-up of the pixel interpolated a record that marked_sets() was given marked.
+    bool interpolates_marked(size_t pixel, const std::vector<std::vector<uint8_t>>& marked_sets) const;
     size_t pixel_count() const { return m_pixels.size(); }
     /// The memory it holds.
     size_t bytes() const;
