@@ -55,13 +55,15 @@ inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& fro
 }
 
 /// Whether `s` may meet the ray o + t d for t in [0, tmax]: the ray's point nearest the centre,
-/// widened by a margin far beyond float rounding (a ten-thousandth of the distances involved).
+/// widened by a margin far beyond float rounding (a ten-thousandth of the distances involved,
+/// measured along their largest axis). No square root: the ray tracer asks it of many rays.
 inline bool may_meet_ray(const BoundingSphere& s, Vec3 o, Vec3 d, float tmax) {
     if (s.empty()) return false;
     const Vec3 to_centre = s.center - o;
     const float t = std::clamp(dot(to_centre, d) / std::max(length2(d), 1e-30f), 0.0f, tmax);
-    const float margin = 1e-4f * (1 + s.radius + length(to_centre) + length(o));
-    return length(o + d * t - s.center) <= s.radius + margin;
+    const auto largest = [](Vec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
+    const float reach = s.radius + 2e-4f * (1 + s.radius + largest(to_centre) + largest(o));
+    return length2(d * t - to_centre) <= reach * reach;
 }
 
 }  // namespace steadylight

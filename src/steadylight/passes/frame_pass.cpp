@@ -125,11 +125,9 @@ void set_reused_values(PixelReuse& reuse, const LocalizedLighting& lighting, Ana
     // have written (fill_layers), summed in the same order.
     if (analysis == AnalysisLayers::made)
         reuse.reused_layers = [&lighting](int x, int y, const PixelTrace& trace, PixelSums& sums) {
-            const float share = std::min(influence_at(lighting, x, y), max_influence_shown);
             Rgb sum;
-            // Zeros added to zero stay zero: most of the screen is far from the moving objects.
-            if (share != 0)
-                for (int ray = 0; ray < trace.surface_rays; ++ray) sum += Rgb{1, 1, 1} * share;
+            for (int ray = 0; ray < trace.surface_rays; ++ray)
+                sum += Rgb{1, 1, 1} * std::min(influence_at(lighting, x, y), max_influence_shown);
             sums.extra[influence_slot] = sum;
         };
     // A pixel whose corrected records changed, and nothing else: L_t interpolated again at each of
