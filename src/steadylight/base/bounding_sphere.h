@@ -55,7 +55,7 @@ inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& fro
 }
 
 /// Whether `s` may meet the ray o + t d for t in [0, tmax]: the ray's point nearest the centre,
-/// widened by a margin far beyond float rounding (a ten-thousandth of the distances involved,
+/// widened by a margin far beyond float rounding (two ten-thousandths of the distances involved,
 /// measured along their largest axis). No square root: the ray tracer asks it of many rays.
 inline bool may_meet_ray(const BoundingSphere& s, Vec3 o, Vec3 d, float tmax) {
     if (s.empty()) return false;
