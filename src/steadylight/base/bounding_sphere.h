@@ -26,31 +26,34 @@ struct BoundingSphere {
 
 /// Whether `s` may meet a segment from a point of sphere `from` to a point of sphere `to`. Every
 /// such segment lies in the convex hull of the two spheres, the union over t in [0, 1] of the
-/// spheres about lerp(centres, t) with radius lerp(radii, t); the distance from s's centre to
-/// sphere t, |c - x(t)| - r(t), is convex in t, so a ternary search finds its least value.
+/// spheres about lerp(centres, t) with radius lerp(radii, t). The distance from s's centre to
+/// sphere t, gap(t) = |c - x(t)| - r(t), is convex in t; its least value over [0, 1] is at the
+/// point where its derivative vanishes, clamped to [0, 1]. With a the centre's distance along
+/// the centres' axis (length L), h its distance off it and k = (r_to - r_from) / L the radii's
+/// slope, gap(tau) = sqrt((a - tau)^2 + h^2) - r_from - k tau for tau = t L, whose derivative
+/// vanishes where tau - a = k h / sqrt(1 - k^2); for |k| >= 1 gap is monotonic, least at an end.
 /// `slack` widens the test (rounding, ray offsets).
 inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& from, const BoundingSphere& to,
                               float slack) {
     if (s.empty() || from.empty() || to.empty()) return false;
     // First the capsule of the larger radius about the centres' segment, which holds the hull:
     // most spheres are clear of it, and it costs one distance.
-    const Vec3 along = to.center - from.center;
-    const float t_nearest =
-        std::clamp(dot(s.center - from.center, along) / std::max(length2(along), 1e-30f), 0.0f, 1.0f);
+    const Vec3 along = to.center - from.center, to_s = s.center - from.center;
+    const float along2 = length2(along);
+    const float t_nearest = std::clamp(dot(to_s, along) / std::max(along2, 1e-30f), 0.0f, 1.0f);
     if (length(s.center - (from.center + along * t_nearest)) > s.radius + std::max(from.radius, to.radius) + slack)
         return false;
     const auto gap = [&](float t) {
         return length(s.center - lerp(from.center, to.center, t)) - (from.radius + (to.radius - from.radius) * t);
     };
-    float lo = 0, hi = 1;
-    for (int step = 0; step < 40; ++step) {
-        const float a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
-        if (gap(a) < gap(b))
-            hi = b;
-        else
-            lo = a;
+    float t_least = 0;
+    if (along2 > 0) {
+        const float L = std::sqrt(along2), a = dot(to_s, along) / L;
+        const float h = length(to_s - along * (dot(to_s, along) / along2));
+        const float k = (to.radius - from.radius) / L;
+        if (std::abs(k) < 1) t_least = std::clamp((a + k * h / std::sqrt(1 - k * k)) / L, 0.0f, 1.0f);
     }
-    const float least = std::min({gap(0), gap(1), gap((lo + hi) / 2)});
+    const float least = std::min({gap(0), gap(1), gap(t_least)});
     return least <= s.radius + slack;
 }
 

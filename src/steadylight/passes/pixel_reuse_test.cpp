@@ -59,6 +59,49 @@ TEST(BoundingSphere, SegmentsBetweenTwoSpheresThroughAThirdAreNeverMissed) {
     EXPECT_GT(no, 1500);
 }
 
+// may_meet_segments answers as the hull's distance does, beyond a margin far below its callers'
+// slack: spheres of every size, one inside the other, one sphere twice, and objects sized to
+// come within a hair of the hull or stop a hair short of it.
+TEST(BoundingSphere, SegmentsTestAnswersAsTheHullsDistance) {
+    Pcg32 rng(13);
+    int met = 0, missed = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const BoundingSphere from = random_sphere(rng, trial % 4 == 0 ? 3.0f : 0.5f);
+        const BoundingSphere to = trial % 5 == 0 ? from : random_sphere(rng, 0.5f);
+        BoundingSphere object = random_sphere(rng, 0.4f);
+        // The oracle in double precision: the gap is convex in t, so a ternary search finds its
+        // least value.
+        const auto gap = [&](double t) {
+            double distance2 = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                const double x = double(from.center[axis]) + (double(to.center[axis]) - from.center[axis]) * t;
+                distance2 += (double(object.center[axis]) - x) * (double(object.center[axis]) - x);
+            }
+            return std::sqrt(distance2) - (double(from.radius) + (double(to.radius) - from.radius) * t);
+        };
+        double lo = 0, hi = 1;
+        for (int step = 0; step < 200; ++step) {
+            const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+            if (gap(a) < gap(b))
+                hi = b;
+            else
+                lo = a;
+        }
+        const double least = std::min({gap(0), gap(1), gap((lo + hi) / 2)});
+        if (trial % 2 == 0 && least > 1e-3) object.radius = float(least * (1 + (rng.next_float() - 0.5) * 2e-3));
+        const bool answer = may_meet_segments(object, from, to, 0);
+        if (least <= object.radius) {
+            ASSERT_TRUE(answer) << "trial " << trial;
+        } else if (least > object.radius + 1e-5) {
+            ASSERT_FALSE(answer) << "trial " << trial;
+        }
+        answer ? ++met : ++missed;
+    }
+    // Both answers are given.
+    EXPECT_GT(met, 3000);
+    EXPECT_GT(missed, 3000);
+}
+
 // may_meet_ray's "no" is certain, and it answers as the distance does beyond its margin: rays
 // from random points aimed into a sphere, at its surface (grazing) or anywhere, of any length,
 // their directions not unit.
