@@ -79,13 +79,14 @@ struct IndirectParts {
     float influence;
     Rgb L_y, L_t;  // irradiance
     bool on_dynamic;
+    std::optional<Rgb> E_static;  // the static cache's, interpolated (interpolated_irradiance)
 };
 
 /// The localized method's own layers: influence, L_y, L_t (as radiance) and the static cache's
-/// indirect light. The last is looked up on one camera ray per pixel only (it is smooth), and
+/// indirect light. The last is taken on one camera ray per pixel only (it is smooth), and
 /// weighted so that the pixel's average comes out right.
-void fill_layers(const FrameContext& context, const IrradianceCache& static_cache, const SurfacePoint& sp, Vec3 n,
-                 const PixelSample& pixel, const IndirectParts& parts, ExtraLayers& extra) {
+void fill_layers(const FrameContext& context, const SurfacePoint& sp, const PixelSample& pixel,
+                 const IndirectParts& parts, ExtraLayers& extra) {
     // The layers show the base's albedo as seen head-on: the shading pass's own wo is not here.
     const Rgb albedo_over_pi = bsdf_at(context, sp)->diffuse_reflectance({0, 0, 1}) * inv_pi;
     // Dynamic objects always take L_y: shown as the largest influence, and in their own mask.
@@ -96,9 +97,7 @@ void fill_layers(const FrameContext& context, const IrradianceCache& static_cach
     extra[dynamic_slot] = Rgb{1, 1, 1} * (parts.on_dynamic ? 1.0f : 0.0f);
     extra[L_y_slot] = albedo_over_pi * parts.L_y;
     extra[L_t_slot] = albedo_over_pi * parts.L_t;
-    if (pixel.sample == 0 && !parts.on_dynamic)
-        if (const std::optional<Rgb> E = static_cache.interpolate(sp.p, n, 2))
-            extra[indirect_static_slot] = albedo_over_pi * *E * float(pixel.samples);
+    if (parts.E_static) extra[indirect_static_slot] = albedo_over_pi * *parts.E_static * float(pixel.samples);
 }
 
 /// What the localized method's shading reads at diffuse points.
@@ -110,6 +109,9 @@ struct LocalizedLighting {
     const IrradiancePhotons& irradiance;
     const PhotonMap& caustic;
     bool frozen = false;
+    /// L_t's records are the static cache's as they are (the static frame, the frozen baseline):
+    /// L_t interpolated is the static cache's indirect light.
+    bool corrected_is_static = false;
 };
 
 /// The influence at pixel (x, y); 0 where the frame has no influence map (frozen, static frame).
@@ -173,10 +175,12 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
     const PointFallbacks fallback = make_point_fallbacks(context, lighting.irradiance, max_radius, photon.gather);
     std::atomic<long> fallbacks = 0, gather_rays = 0;
     const auto interpolate_or_gather = [&](const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
-                                           const PixelSample& pixel, std::vector<uint32_t>* used_ids = nullptr) {
+                                           const PixelSample& pixel, std::vector<uint32_t>* used_ids = nullptr,
+                                           bool* gathered_here = nullptr) {
         std::atomic<long> gathered = 0, rays = 0;
         const Rgb E = cached_irradiance(cache, sp, n, fallback.at(pixel.share), gathered, rays, used_ids);
         if (gathered && pixel.recorder) pixel.recorder->add_flags(pixel.pixel_index, PixelRecorder::gather);
+        if (gathered_here) *gathered_here = gathered > 0;
         fallbacks += gathered, gather_rays += rays;
         return E;
     };
@@ -187,18 +191,27 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         // A recorder that keeps look-ups is told which corrected records L_t was interpolated from.
         thread_local std::vector<uint32_t> L_t_ids;
         const bool tell_ids = pixel.recorder && weight < 1;
-        bool looked_up = false;
+        bool looked_up = false, L_t_gathered = false;
         const auto [L_y, L_t, unused] = remembered(pixel.memo, pixel.reach, sp, n, [&] {
             looked_up = true;
             return PixelMemo::Values{weight > 0 ? interpolate_or_gather(lighting.dynamic_cache, sp, n, pixel) : Rgb{},
                                      weight < 1 ? interpolate_or_gather(lighting.corrected_cache, sp, n, pixel,
-                                                                        tell_ids ? &L_t_ids : nullptr)
+                                                                        tell_ids ? &L_t_ids : nullptr, &L_t_gathered)
                                                 : Rgb{},
                                      Rgb{}};
         });
         if (tell_ids && looked_up && pixel.memo && pixel.memo->last_used() >= 0)
             pixel.recorder->add_look_up_records(pixel.pixel_index, pixel.memo->last_used(), L_t_ids);
-        if (extra) fill_layers(context, lighting.static_cache, sp, n, pixel, {I, L_y, L_t, on_dynamic}, *extra);
+        if (extra) {
+            // The static cache's indirect light, on the pixel's first camera ray: L_t itself where
+            // that ray just interpolated it from the static records.
+            std::optional<Rgb> E_static;
+            if (pixel.sample == 0 && !on_dynamic)
+                E_static = lighting.corrected_is_static && looked_up && weight < 1
+                               ? (L_t_gathered ? std::nullopt : std::optional<Rgb>(L_t))
+                               : interpolated_irradiance(lighting.static_cache, sp.p, n);
+            fill_layers(context, sp, pixel, {I, L_y, L_t, on_dynamic, E_static}, *extra);
+        }
         return L_y * weight + L_t * (1 - weight);
     };
     ShadedFrame shaded = shade_frame(
@@ -229,9 +242,10 @@ std::optional<StaticFrame> make_static_frame(const FrameContext& context, const 
     StaticFrame out;
     StaticFrameMaker maker(out, context.frame, photon.shading.samples_per_pixel, corrected_cache, max_bytes);
     FrameStats stats;
-    shade_localized(
-        context, {solution.cache, no_dynamic_cache, corrected_cache, no_influence, irradiance, paths.caustic.photons},
-        photon, localized, Visibility::static_only, analysis, &maker, stats);
+    shade_localized(context,
+                    {solution.cache, no_dynamic_cache, corrected_cache, no_influence, irradiance, paths.caustic.photons,
+                     false, true},
+                    photon, localized, Visibility::static_only, analysis, &maker, stats);
     if (!maker.fits()) return std::nullopt;
     maker.finish_frame();
     return out;
@@ -408,7 +422,7 @@ LocalizedFrame run_frame_pass(const FrameContext& context, const StaticSolution&
     // Shade: L_i = f(g(I)) L_y + (1 - f(g(I))) L_t, and L_y on dynamic objects; with a static
     // frame only the pixels the frame's changes reach (planning them is part of the phase).
     const LocalizedLighting lighting{static_cache,      dynamic_cache,   corrected_cache, influence,
-                                     traced.irradiance, photons.caustic, frozen};
+                                     traced.irradiance, photons.caustic, frozen,          frozen};
     PixelPlan plan;
     ShadedFrame shaded = timed_phase("shading", stats.shading_s, [&] {
         if (!base)

@@ -166,13 +166,18 @@ Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& 
     return picture;
 }
 
+std::optional<Rgb> interpolated_irradiance(const IrradianceCache& cache, Vec3 p, Vec3 n,
+                                           std::vector<uint32_t>* used_ids) {
+    if (const std::optional<Rgb> E = cache.interpolate(p, n, 1, used_ids)) return E;
+    // Between records after neighbour clamping, or inside a pixel off its centre: let the
+    // records reach twice as far.
+    return cache.interpolate(p, n, 2, used_ids);
+}
+
 Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3 n,
                       const std::function<GatherResult(const SurfacePoint&, Vec3)>& gather,
                       std::atomic<long>& fallbacks, std::atomic<long>& gather_rays, std::vector<uint32_t>* used_ids) {
-    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n, 1, used_ids)) return *E;
-    // Between records after neighbour clamping, or inside a pixel off its centre: let the
-    // records reach twice as far before gathering anew.
-    if (const std::optional<Rgb> E = cache.interpolate(sp.p, n, 2, used_ids)) return *E;
+    if (const std::optional<Rgb> E = interpolated_irradiance(cache, sp.p, n, used_ids)) return *E;
     // Not covered (a point seen only through a mirror): gather here without keeping the record.
     const GatherResult g = gather(sp, n);
     ++fallbacks;

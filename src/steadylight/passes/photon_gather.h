@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "steadylight/base/image.h"
 #include "steadylight/irradiance/cache_builder.h"
@@ -78,6 +79,12 @@ struct PointFallbacks {
 };
 PointFallbacks make_point_fallbacks(const FrameContext& context, const IrradiancePhotons& photons, float max_radius,
                                     const GatherSettings& gather);
+
+/// Indirect irradiance interpolated from `cache` as shading interpolates it: over the records
+/// Ward's weight lets reach (p, n), else over those reaching twice as far; nothing where none
+/// does. `used_ids`, when given, gets the ids of the records interpolated (empty for nothing).
+std::optional<Rgb> interpolated_irradiance(const IrradianceCache& cache, Vec3 p, Vec3 n,
+                                           std::vector<uint32_t>* used_ids = nullptr);
 
 /// Indirect irradiance from `cache`, or, where no record reaches even twice as far, from a gather
 /// at the point (not kept, so the cache never depends on shading order). Counts the fallbacks.
