@@ -145,15 +145,41 @@ BoundingSphere object_bounds(const Geometry& geometry) {
     return bounds;
 }
 
-/// `bounds` placed by `t` (its radius scaled by t's largest axis scale), padded for rounding.
+/// The most `t` stretches a length: its largest singular value, bounded above (Gershgorin) by
+/// the largest row sum of |M^T M| for its linear part M. Exact, but for rounding, where M's
+/// columns are orthogonal (every translation-rotation-scale); larger where a placement chain
+/// shears, where the longest column would fall short.
+float largest_stretch(const Transform& t) {
+    const Vec3 axes[3] = {t.vector({1, 0, 0}), t.vector({0, 1, 0}), t.vector({0, 0, 1})};
+    float largest2 = 0;
+    for (const Vec3 a : axes)
+        largest2 =
+            std::max(largest2, std::abs(dot(a, axes[0])) + std::abs(dot(a, axes[1])) + std::abs(dot(a, axes[2])));
+    return std::sqrt(largest2);
+}
+
+/// `bounds` placed by `t` (its radius scaled by t's largest stretch), padded for rounding.
 BoundingSphere placed_bounds(const BoundingSphere& bounds, const Transform& t) {
     if (bounds.empty()) return bounds;
-    float scale = 0;
-    for (const Vec3 axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}})
-        scale = std::max(scale, length(t.vector(axis)));
     const Vec3 center = t.point(bounds.center);
-    const float radius = bounds.radius * scale;
+    const float radius = bounds.radius * largest_stretch(t);
     return {center, radius * 1.0001f + ray_epsilon(max(-center, center) + Vec3{1, 1, 1} * radius)};
+}
+
+/// For a sphere primitive placed by `t` (an ellipsoid where `t` scales unevenly, inside the sphere
+/// of its largest stretch): the squared distance from its placed centre beyond which a point is
+/// outside it, by a margin of a hundred-thousandth of its radius and of its centre's
+/// distance from the origin, a hundred times the rounding of the placement and of Embree's map of
+/// a ray into the sphere's space. A ray offset off its surface (ray_epsilon) starts ten times
+/// farther out. Infinity for a mesh, where no start is known to be outside.
+float outside_sphere2(const Geometry& geometry, const Transform& t) {
+    const auto* sphere = std::get_if<Sphere>(&geometry);
+    if (!sphere) return infinity;
+    const Vec3 center = t.point(sphere->center);
+    const float radius = sphere->radius * largest_stretch(t);
+    const float outside =
+        radius * (1 + 1e-5f) + 1e-5f * (1 + std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)}));
+    return outside * outside;
 }
 
 }  // namespace
@@ -246,7 +272,7 @@ void RayTracer::add_instanced_object(int object, unsigned mask) {
 
 void RayTracer::set_frame(const FrameState& frame) {
     m_dynamic_bounds.clear();
-    m_dynamic_spheres.clear();
+    m_dynamic_outside2.clear();
     for (size_t id = 0; id < m_instance_object.size(); ++id) {
         const int object = m_instance_object[id];
         const Transform& t = frame.world_from_object[size_t(object)];
@@ -255,15 +281,7 @@ void RayTracer::set_frame(const FrameState& frame) {
         rtcCommitGeometry(instance);
         if (m_scene.object(object).is_dynamic()) {
             m_dynamic_bounds.push_back(placed_bounds(m_object_bounds[size_t(object)], t));
-            SphereLeft& sphere = m_dynamic_spheres.emplace_back();
-            if (const auto* primitive = std::get_if<Sphere>(&m_scene.object(object).geometry)) {
-                // Outside beyond a margin of a hundred-thousandth of the radius, far beyond the
-                // map's rounding: a ray offset off the surface (ray_epsilon) mostly starts farther
-                // out; one that does not is asked of Embree, as before.
-                sphere.object_from_world = t.inverse();
-                sphere.center = primitive->center;
-                sphere.outside2 = primitive->radius * primitive->radius * (1 + 1e-5f);
-            }
+            m_dynamic_outside2.push_back(outside_sphere2(m_scene.object(object).geometry, t));
         }
     }
     rtcCommitScene(m_instance_scene);
@@ -295,18 +313,18 @@ bool RayTracer::may_hit_instances(const Ray& ray, float tmax, Visibility visibil
         if (!(t0 <= t1)) return false;
     }
     // Then, where the instances are the dynamic objects alone, each object: the sphere about it
-    // (about a third of the rays through the box of a ball pass beside the ball), and whether the
-    // ray leaves it, for a sphere primitive (its own points' shadow rays and gathers).
+    // (about a third of the rays through the box of a ball pass beside the ball), and, for a
+    // sphere primitive, whose bounds share its centre, whether the ray starts outside it and heads
+    // away from its centre (its own points' shadow rays and gathers): the distance from the
+    // centre only grows along such a ray.
     if (!m_spheres_bound_instances) return true;
-    for (size_t i = 0; i < m_dynamic_bounds.size(); ++i)
-        if (may_meet_ray(m_dynamic_bounds[i], ray.o, ray.d, tmax) && !m_dynamic_spheres[i].left_by(ray)) return true;
+    for (size_t i = 0; i < m_dynamic_bounds.size(); ++i) {
+        if (!may_meet_ray(m_dynamic_bounds[i], ray.o, ray.d, tmax)) continue;
+        const Vec3 from_center = ray.o - m_dynamic_bounds[i].center;
+        if (length2(from_center) >= m_dynamic_outside2[i] && dot(ray.d, from_center) >= 0) continue;
+        return true;
+    }
     return false;
-}
-
-bool RayTracer::SphereLeft::left_by(const Ray& ray) const {
-    if (outside2 < 0) return false;
-    const Vec3 from_center = object_from_world.point(ray.o) - center;
-    return length2(from_center) >= outside2 && dot(object_from_world.vector(ray.d), from_center) >= 0;
 }
 
 std::optional<Hit> RayTracer::intersect(const Ray& ray, Visibility visibility) const {

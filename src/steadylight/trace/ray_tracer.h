@@ -90,17 +90,9 @@ private:
     Vec3 m_instance_bounds_lo, m_instance_bounds_hi;  // of the instance scene at this frame; empty if none
     std::vector<BoundingSphere> m_object_bounds;      // per object, in its own space (instanced objects only)
     std::vector<BoundingSphere> m_dynamic_bounds;     // the dynamic objects' at this frame
-    /// Beside each of m_dynamic_bounds, for a dynamic object that is a sphere primitive: the
-    /// sphere in its own space and the frame's map into that space (outside2 < 0: not a sphere).
-    struct SphereLeft {
-        Transform object_from_world;
-        Vec3 center;
-        float outside2 = -1;  // a squared distance from the centre beyond the sphere's, by a margin
-        /// Whether the ray starts outside the sphere and heads away from its centre: then it
-        /// cannot meet it (the squared distance from the centre only grows along it).
-        bool left_by(const Ray& ray) const;
-    };
-    std::vector<SphereLeft> m_dynamic_spheres;
+    /// Beside each of m_dynamic_bounds: for a sphere primitive (its bounds share its centre), the
+    /// squared distance from the centre beyond which a ray's start is outside it; infinity else.
+    std::vector<float> m_dynamic_outside2;
     bool m_spheres_bound_instances = false;  // every instance is dynamic: m_dynamic_bounds bound them
 };
 

@@ -138,51 +138,91 @@ TEST(RayTracer, RayFromInsideASphereHitsItsFarSide) {
 }
 
 // A moving sphere primitive's own points' rays that head out of it are not asked of Embree
-// (RayTracer::SphereLeft): each kind of ray about the surface still meets what it meets, on an
-// unevenly scaled sphere too, where the test runs in the sphere's own space. Rays start a
-// thousandth of the radius off the surface, as a ray offset puts them.
+// (RayTracer::may_hit_instances): each kind of ray about the surface still meets what it meets.
+// The sphere is placed rotated and evenly scaled, where most rays heading out are spared Embree,
+// and unevenly scaled, an ellipsoid whose rays are judged against the sphere about it. Rays start
+// a thousandth of the radius off the surface, as a ray offset puts them.
 TEST(RayTracer, RaysAboutAMovingSphereMeetItAsTheyShould) {
-    SceneDesc desc = floor_and_moving_sphere();
-    desc.objects[1].placement[0].scale = {2, 1, 0.5f};
-    const Scene scene(std::move(desc));
-    RayTracer tracer(scene, scene.evaluate(0));
-    Pcg32 rng(3);
-    int heading_out = 0, from_inside = 0, heading_in = 0;
-    for (const int frame : {0, 3, 9}) {
-        const FrameState state = scene.evaluate(frame);
-        tracer.set_frame(state);
-        const Transform& world_from_object = state.world_from_object[1];
-        for (int i = 0; i < 3000; ++i) {
-            const Vec3 on_unit = sample_uniform_sphere(rng.next_vec2());
-            const Vec3 p = world_from_object.point(on_unit), n = normalize(world_from_object.normal(on_unit));
-            Vec3 d = sample_uniform_sphere(rng.next_vec2());
-            if (std::abs(dot(d, n)) < 0.05f) continue;  // grazing: either answer is the surface's
-            const bool out = dot(d, n) > 0;
-            const int kind = i % 2;
-            if (out && kind == 0) {
-                // From just outside, heading out: the sphere is behind the ray.
-                const std::optional<Hit> hit = tracer.intersect({p + n * 1e-3f, d});
-                ASSERT_TRUE(!hit || hit->object != 1) << frame << " " << i;
-                ASSERT_FALSE(tracer.occluded({p + n * 1e-3f, d, 0.5f})) << frame << " " << i;
-                ++heading_out;
-            } else {
-                // From just inside heading out, or from just outside aimed at a point inside: it
-                // meets the sphere.
-                if (!out) {
-                    const Vec3 inside = sample_uniform_sphere(rng.next_vec2()) * (0.9f * rng.next_float());
-                    d = normalize(world_from_object.point(inside) - (p + n * 1e-3f));
+    for (const Vec3 scale : {Vec3{1.5f, 1.5f, 1.5f}, Vec3{2, 1, 0.5f}}) {
+        SceneDesc desc = floor_and_moving_sphere();
+        desc.objects[1].placement[0].scale = scale;
+        desc.objects[1].placement[0].rotation = Quat::from_axis_angle(normalize(Vec3{1, 2, 3}), 0.7f);
+        const Scene scene(std::move(desc));
+        RayTracer tracer(scene, scene.evaluate(0));
+        Pcg32 rng(3);
+        int heading_out = 0, from_inside = 0, heading_in = 0;
+        for (const int frame : {0, 3, 9}) {
+            const FrameState state = scene.evaluate(frame);
+            tracer.set_frame(state);
+            const Transform& world_from_object = state.world_from_object[1];
+            for (int i = 0; i < 3000; ++i) {
+                const Vec3 on_unit = sample_uniform_sphere(rng.next_vec2());
+                const Vec3 p = world_from_object.point(on_unit), n = normalize(world_from_object.normal(on_unit));
+                Vec3 d = sample_uniform_sphere(rng.next_vec2());
+                if (std::abs(dot(d, n)) < 0.05f) continue;  // grazing: either answer is the surface's
+                const bool out = dot(d, n) > 0;
+                const int kind = i % 2;
+                if (out && kind == 0) {
+                    // From just outside, heading out: the sphere is behind the ray.
+                    const std::optional<Hit> hit = tracer.intersect({p + n * 1e-3f, d});
+                    ASSERT_TRUE(!hit || hit->object != 1) << frame << " " << i;
+                    ASSERT_FALSE(tracer.occluded({p + n * 1e-3f, d, 0.5f})) << frame << " " << i;
+                    ++heading_out;
+                } else {
+                    // From just inside heading out, or from just outside aimed at a point inside:
+                    // it meets the sphere.
+                    if (!out) {
+                        const Vec3 inside = sample_uniform_sphere(rng.next_vec2()) * (0.9f * rng.next_float());
+                        d = normalize(world_from_object.point(inside) - (p + n * 1e-3f));
+                    }
+                    const Ray ray{out ? p - n * 1e-3f : p + n * 1e-3f, d};
+                    const std::optional<Hit> hit = tracer.intersect(ray);
+                    ASSERT_TRUE(hit && hit->object == 1) << frame << " " << i;
+                    ASSERT_TRUE(tracer.occluded(ray)) << frame << " " << i;
+                    out ? ++from_inside : ++heading_in;
                 }
-                const Ray ray{out ? p - n * 1e-3f : p + n * 1e-3f, d};
-                const std::optional<Hit> hit = tracer.intersect(ray);
-                ASSERT_TRUE(hit && hit->object == 1) << frame << " " << i;
-                ASSERT_TRUE(tracer.occluded(ray)) << frame << " " << i;
-                out ? ++from_inside : ++heading_in;
             }
         }
+        EXPECT_GT(heading_out, 1000);
+        EXPECT_GT(from_inside, 1000);
+        EXPECT_GT(heading_in, 1000);
     }
-    EXPECT_GT(heading_out, 1000);
-    EXPECT_GT(from_inside, 1000);
-    EXPECT_GT(heading_in, 1000);
+}
+
+// A moving object placed by a chain that shears (a rotated child of an unevenly scaled parent)
+// stretches farther than its longest placed axis: rays meeting it near its farthest points still
+// meet it, from outside and from its own surface, and the sphere about it holds it.
+TEST(RayTracer, AShearedMovingObjectIsMetToItsFarthestPoints) {
+    SceneDesc desc = floor_and_moving_sphere();
+    AnimatedTrs child;
+    child.rotation = Quat::from_axis_angle({0, 0, 1}, 0.7853982f);
+    desc.objects[1].placement[0].scale = {2, 1, 1};
+    desc.objects[1].placement.push_back(child);
+    const Scene scene(std::move(desc));
+    const FrameState state = scene.evaluate(4);
+    const RayTracer tracer(scene, state);
+    const Transform& world_from_object = state.world_from_object[1];
+    const Vec3 center = world_from_object.point({});
+    Pcg32 rng(5);
+    int farthest_seen = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Vec3 p = world_from_object.point(sample_uniform_sphere(rng.next_vec2()));
+        const Vec3 out = p - center;
+        if (length(out) < 1.9f) continue;  // near the tips, 2 from the centre; its longest axis is 1.58
+        ++farthest_seen;
+        ASSERT_LE(length(out), tracer.dynamic_bounds()[0].radius) << i;
+        // A ray across the object just inside that point, perpendicular to the way out.
+        const Vec3 across = normalize(cross(out, Vec3{0, 1, 0}));  // level: clear of the floor
+        const Vec3 inside = center + out * 0.99f;
+        const Ray ray{inside - across * 5.0f, across};
+        const std::optional<Hit> hit = tracer.intersect(ray);
+        ASSERT_TRUE(hit && hit->object == 1) << i;
+        ASSERT_TRUE(tracer.occluded(ray)) << i;
+        // And a ray from just inside that point out of the object, through its tip.
+        const Ray leaving{inside, normalize(out)};
+        ASSERT_TRUE(tracer.intersect(leaving).has_value() && tracer.intersect(leaving)->object == 1) << i;
+    }
+    EXPECT_GT(farthest_seen, 50);
 }
 
 TEST(RayTracer, UnevenlyScaledStaticSphereIsAnEllipsoid) {
