@@ -167,9 +167,13 @@ void write_frame(const RenderSettings& settings, const Scene& scene, int frame, 
     }
     write_png(frame_file_name(settings.out_dir, scene.name(), frame, "png"), rendered.beauty, output.view, alpha);
     if (settings.aov_pngs)
-        for (const NamedImage& layer : rendered.layers)
-            write_png(frame_file_name(settings.out_dir, scene.name(), frame, layer.name + ".png"), layer.image,
-                      output.view);
+        for (const NamedImage& layer : rendered.layers) {
+            const std::string png = frame_file_name(settings.out_dir, scene.name(), frame, layer.name + ".png");
+            if (const GreyImage* grey = layer.grey())
+                write_png(png, colour_of(*grey), output.view);
+            else
+                write_png(png, std::get<Image>(layer.image), output.view);
+        }
     if (rendered.stats)
         write_text_file(frame_file_name(settings.out_dir, scene.name(), frame, "stats.json"),
                         nlohmann::json(*rendered.stats).dump(2) + "\n");

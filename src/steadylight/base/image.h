@@ -1,7 +1,8 @@
-// A linear RGB image, row-major from the top-left pixel.
+// A linear RGB image and a grey one, row-major from the top-left pixel.
 #pragma once
 
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "steadylight/base/color.h"
@@ -30,12 +31,47 @@ struct Image {
     const Rgb& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
 };
 
-/// An image under the name it is written with, such as one AOV layer of a frame. `grey` when it
-/// holds one value per pixel (a mask, a count), written as a single channel.
+/// One value a pixel (a mask, a count, a ratio): a third of an Image's bytes, for the layers
+/// that a colour would hold three times.
+struct GreyImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float, UnfilledAllocator<float>> values;
+
+    GreyImage() = default;
+    /// A black image.
+    GreyImage(int w, int h) : width(w), height(h), values(size_t(w) * size_t(h), 0.0f) {}
+    /// An image whose every pixel the caller writes before anything reads it (Image::unfilled).
+    static GreyImage unfilled(int w, int h) {
+        GreyImage image;
+        image.width = w, image.height = h;
+        image.values.resize(size_t(w) * size_t(h));
+        return image;
+    }
+    float& at(int x, int y) { return values[size_t(y) * size_t(width) + size_t(x)]; }
+    const float& at(int x, int y) const { return values[size_t(y) * size_t(width) + size_t(x)]; }
+};
+
+/// `grey` with its value in each of the three channels (for an 8-bit picture of it).
+inline Image colour_of(const GreyImage& grey) {
+    Image image = Image::unfilled(grey.width, grey.height);
+    for (size_t i = 0; i < grey.values.size(); ++i) image.pixels[i] = {grey.values[i], grey.values[i], grey.values[i]};
+    return image;
+}
+
+/// An image under the name it is written with, such as one AOV layer of a frame: a colour one, or
+/// a grey one, written as a single channel.
 struct NamedImage {
     std::string name;
-    Image image;
-    bool grey = false;
+    std::variant<Image, GreyImage> image;
+
+    const GreyImage* grey() const { return std::get_if<GreyImage>(&image); }
+    size_t pixel_count() const { return grey() ? grey()->values.size() : std::get<Image>(image).pixels.size(); }
+    /// Pixel `i`, row-major; a grey one with its value in each channel.
+    Rgb colour_at(size_t i) const {
+        if (const GreyImage* g = grey()) return {g->values[i], g->values[i], g->values[i]};
+        return std::get<Image>(image).pixels[i];
+    }
 };
 
 }  // namespace steadylight

@@ -3,6 +3,8 @@
 // computes it) and a line here.
 #include "steadylight/methods/method.h"
 
+#include <variant>
+
 #include <fmt/format.h>
 
 #include "steadylight/base/error.h"
@@ -12,23 +14,21 @@
 namespace steadylight {
 namespace {
 
-/// An AOV of a method's frame struct: its name, what it holds and where the frame keeps it.
+/// An AOV of a method's frame struct: its name, what it holds and where the frame keeps it (a
+/// colour image or a grey one).
 template <class Frame>
 struct LayerOf {
     std::string_view name;
     LayerKind kind;
-    Image Frame::*image;
-    bool grey = false;
+    std::variant<Image Frame::*, GreyImage Frame::*> image;
 };
 
 constexpr LayerKind term = LayerKind::term, analysis = LayerKind::analysis;
 
 const std::vector<LayerOf<PhotonFrame>> photon_layers = {
-    {"direct", term, &PhotonFrame::direct},
-    {"indirect", term, &PhotonFrame::indirect},
-    {"caustic", term, &PhotonFrame::caustic},
-    {"specular", term, &PhotonFrame::specular},
-    {"records", analysis, &PhotonFrame::records, true},
+    {"direct", term, &PhotonFrame::direct},       {"indirect", term, &PhotonFrame::indirect},
+    {"caustic", term, &PhotonFrame::caustic},     {"specular", term, &PhotonFrame::specular},
+    {"records", analysis, &PhotonFrame::records},
 };
 
 const std::vector<LayerOf<LocalizedFrame>> localized_layers = {
@@ -39,11 +39,11 @@ const std::vector<LayerOf<LocalizedFrame>> localized_layers = {
     {"indirect_static", analysis, &LocalizedFrame::indirect_static},
     {"L_y", analysis, &LocalizedFrame::L_y},
     {"L_t", analysis, &LocalizedFrame::L_t},
-    {"influence", analysis, &LocalizedFrame::influence, true},
-    {"dynamic", analysis, &LocalizedFrame::dynamic, true},
-    {"static_records", analysis, &LocalizedFrame::static_records, true},
-    {"dynamic_records", analysis, &LocalizedFrame::dynamic_records, true},
-    {"changed", analysis, &LocalizedFrame::changed, true},
+    {"influence", analysis, &LocalizedFrame::influence},
+    {"dynamic", analysis, &LocalizedFrame::dynamic},
+    {"static_records", analysis, &LocalizedFrame::static_records},
+    {"dynamic_records", analysis, &LocalizedFrame::dynamic_records},
+    {"changed", analysis, &LocalizedFrame::changed},
 };
 
 const std::vector<LayerOf<PathFrame>> path_layers = {};  // the beauty only
@@ -61,7 +61,11 @@ RenderedFrame rendered(Method method, Frame&& frame, const std::vector<LayerOf<s
     RenderedFrame out{std::move(frame.beauty), {}, std::move(frame.stats), std::move(frame.alpha)};
     out.stats->method = std::string(method_info(method).name);
     for (const auto& layer : layers)
-        out.layers.push_back({std::string(layer.name), std::move(frame.*layer.image), layer.grey});
+        std::visit(
+            [&](auto member) {
+                out.layers.push_back({std::string(layer.name), std::move(frame.*member)});
+            },
+            layer.image);
     return out;
 }
 

@@ -19,7 +19,7 @@ namespace steadylight {
 struct PhotonFrame {
     Image beauty, direct, indirect, caustic, specular;
     std::optional<Image> alpha;  // with a transparent background (ShadedFrame::alpha)
-    Image records;               // 1 where an irradiance record projects, 0 elsewhere (paper Fig. 3)
+    GreyImage records;           // 1 where an irradiance record projects, 0 elsewhere (paper Fig. 3)
     FrameStats stats;
 };
 

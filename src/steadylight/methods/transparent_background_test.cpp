@@ -79,8 +79,8 @@ TEST(TransparentBackground, AlphaIsTheShareOfCameraRaysThatMeetASurfaceInEveryMe
             // Nothing of the world the camera sees directly, in the beauty or any layer of light.
             ASSERT_EQ(frame.beauty.pixels[i], Rgb{}) << info.name << " pixel " << i;
             for (const NamedImage& layer : frame.layers) {
-                if (layer.grey) continue;
-                ASSERT_EQ(layer.image.pixels[i], Rgb{}) << info.name << " " << layer.name;
+                if (layer.grey()) continue;
+                ASSERT_EQ(layer.colour_at(i), Rgb{}) << info.name << " " << layer.name;
             }
         }
         EXPECT_GT(empty, int(frame.alpha->pixels.size()) / 2) << info.name;
@@ -105,7 +105,7 @@ TEST(TransparentBackground, LeavesOutOnlyTheWorldTheCameraSeesDirectly) {
                 ++covered;
                 ASSERT_EQ(clear.beauty.pixels[i], opaque.beauty.pixels[i]) << info.name << " pixel " << i;
                 for (size_t l = 0; l < clear.layers.size(); ++l)
-                    ASSERT_EQ(clear.layers[l].image.pixels[i], opaque.layers[l].image.pixels[i])
+                    ASSERT_EQ(clear.layers[l].colour_at(i), opaque.layers[l].colour_at(i))
                         << info.name << " " << clear.layers[l].name;
             } else {
                 // An edge: the world's share of the pixel is gone.

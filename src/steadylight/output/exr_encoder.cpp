@@ -34,39 +34,42 @@ half to_finite_half(float value) {
     return std::isnan(value) ? half(0.0f) : half(std::clamp(value, -max_half, max_half));
 }
 
-/// `count` values, every third float from `floats` (one channel of an image's Rgb), as
+/// `count` values, every `stride`-th float from `floats` (3: one channel of an image's Rgb), as
 /// to_finite_half makes them.
-void to_finite_halves_one_by_one(const float* floats, half* out, size_t count) {
-    for (size_t i = 0; i < count; ++i) out[i] = to_finite_half(floats[3 * i]);
+void to_finite_halves_one_by_one(const float* floats, size_t stride, half* out, size_t count) {
+    for (size_t i = 0; i < count; ++i) out[i] = to_finite_half(floats[stride * i]);
 }
 
 #if defined(__x86_64__)
 /// The same with the F16C instructions, eight values at a time, in a sixth of the time: the same
 /// halves, since both round to the nearest (ties to even), denormals too. A NaN fails the
 /// ordered comparison and is masked to +0, as to_finite_half has it.
-__attribute__((target("avx,f16c"))) void to_finite_halves_f16c(const float* floats, half* out, size_t count) {
+__attribute__((target("avx,f16c"))) void to_finite_halves_f16c(const float* floats, size_t stride, half* out,
+                                                               size_t count) {
     const __m256 lowest = _mm256_set1_ps(-max_half), highest = _mm256_set1_ps(max_half);
     size_t i = 0;
     for (; i + 8 <= count; i += 8) {
-        const float* f = floats + 3 * i;
-        const __m256 v = _mm256_setr_ps(f[0], f[3], f[6], f[9], f[12], f[15], f[18], f[21]);
+        const float* f = floats + stride * i;
+        const __m256 v =
+            stride == 1 ? _mm256_loadu_ps(f) : _mm256_setr_ps(f[0], f[3], f[6], f[9], f[12], f[15], f[18], f[21]);
         const __m256 is_number = _mm256_cmp_ps(v, v, _CMP_ORD_Q);
         const __m256 finite = _mm256_and_ps(_mm256_min_ps(_mm256_max_ps(v, lowest), highest), is_number);
         _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i),
                          _mm256_cvtps_ph(finite, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
     }
-    to_finite_halves_one_by_one(floats + 3 * i, out + i, count - i);
+    to_finite_halves_one_by_one(floats + stride * i, stride, out + i, count - i);
 }
 #endif
 
 /// to_finite_halves_one_by_one, with F16C where the processor has it.
-void to_finite_halves(const float* floats, half* out, size_t count) {
+void to_finite_halves(const float* floats, size_t stride, half* out, size_t count) {
     static_assert(sizeof(half) == 2);
+    SL_CHECK(stride == 1 || stride == 3);
 #if defined(__x86_64__)
     static const bool has_f16c = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
-    if (has_f16c) return to_finite_halves_f16c(floats, out, count);
+    if (has_f16c) return to_finite_halves_f16c(floats, stride, out, count);
 #endif
-    to_finite_halves_one_by_one(floats, out, count);
+    to_finite_halves_one_by_one(floats, stride, out, count);
 }
 
 /// Appends `value`'s bytes (little-endian, as in memory).
@@ -164,11 +167,13 @@ void append_block(int width, int y0, int y1, const std::vector<ExrChannelValues>
     unsigned char* at = raw.data();
     for (int y = y0; y < y1; ++y)
         for (const ExrChannelValues& channel : channels) {
-            const float* values = channel.values + 3 * size_t(y) * line;
+            const size_t stride = size_t(channel.stride);
+            const float* values = channel.values + stride * size_t(y) * line;
             if (type == ExrPixelType::half) {
-                to_finite_halves(values, reinterpret_cast<half*>(at), line);
+                to_finite_halves(values, stride, reinterpret_cast<half*>(at), line);
             } else {
-                for (size_t x = 0; x < line; ++x) std::memcpy(at + x * sizeof(float), values + 3 * x, sizeof(float));
+                for (size_t x = 0; x < line; ++x)
+                    std::memcpy(at + x * sizeof(float), values + stride * x, sizeof(float));
             }
             at += line * value_bytes;
         }

@@ -16,10 +16,11 @@ namespace steadylight {
 enum class ExrPixelType { half, float32 };
 
 /// A channel to encode: its name and its values, row by row from the top, the value of pixel i
-/// being `values[3 i]` (one component of an image's Rgb).
+/// being `values[stride i]` (3: one component of an image's Rgb; 1: a grey image's values).
 struct ExrChannelValues {
     std::string name;
     const float* values;
+    int stride = 3;
 };
 
 /// The bytes of an EXR file of `width` x `height` pixels holding `channels` (names distinct, at

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <variant>
 
 #include "steadylight/output/image_writer.h"
 
@@ -14,34 +15,40 @@ namespace {
 TEST(FrameLayers, NonFiniteValuesAreWrittenAsZeroAndReported) {
     Image beauty(4, 3);
     beauty.at(1, 1) = {0.5f, 2, 3};
-    std::vector<NamedImage> aovs{{"direct", Image(4, 3)}, {"influence", Image(4, 3), true}};
+    std::vector<NamedImage> aovs{{"direct", Image(4, 3)}, {"influence", GreyImage(4, 3)}};
+    Image& direct = std::get<Image>(aovs[0].image);
+    GreyImage& influence = std::get<GreyImage>(aovs[1].image);
     EXPECT_EQ(replace_non_finite(beauty, aovs).count, 0);
 
-    aovs[1].image.at(2, 1).r = std::numeric_limits<float>::quiet_NaN();
-    aovs[1].image.at(3, 2) = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(), 1};
-    aovs[0].image.at(3, 0).g = 1e30f;  // finite: kept (the half writer clamps it)
+    influence.at(2, 1) = std::numeric_limits<float>::quiet_NaN();
+    influence.at(3, 1) = -std::numeric_limits<float>::infinity();
+    influence.at(3, 2) = std::numeric_limits<float>::infinity();
+    influence.at(0, 2) = 1;
+    direct.at(3, 0).g = 1e30f;  // finite: kept (the half writer clamps it)
     const NonFiniteValues found = replace_non_finite(beauty, aovs);
     EXPECT_EQ(found.count, 3);
     EXPECT_EQ(found.first_layer, "influence");
     EXPECT_EQ(found.first_x, 2);
     EXPECT_EQ(found.first_y, 1);
-    EXPECT_EQ(aovs[1].image.at(2, 1).r, 0);
-    EXPECT_EQ(aovs[1].image.at(3, 2).r, 0);
-    EXPECT_EQ(aovs[1].image.at(3, 2).g, 0);
-    EXPECT_EQ(aovs[1].image.at(3, 2).b, 1);
-    EXPECT_EQ(aovs[0].image.at(3, 0).g, 1e30f);
+    EXPECT_EQ(influence.at(2, 1), 0);
+    EXPECT_EQ(influence.at(3, 1), 0);
+    EXPECT_EQ(influence.at(3, 2), 0);
+    EXPECT_EQ(influence.at(0, 2), 1);
+    EXPECT_EQ(direct.at(3, 0).g, 1e30f);
     EXPECT_EQ(beauty.at(1, 1).g, 2);
     EXPECT_EQ(replace_non_finite(beauty, aovs).count, 0);
 
-    // The first is the first in layer order, the beauty's first of all, then pixel order.
-    aovs[1].image.at(0, 0).b = std::numeric_limits<float>::quiet_NaN();
-    aovs[0].image.at(3, 2).r = std::numeric_limits<float>::infinity();
+    // The first is the first in layer order, the beauty's first of all, then pixel order, and a
+    // colour layer's pixel is found by its position whichever channel holds the value.
+    influence.at(0, 0) = std::numeric_limits<float>::quiet_NaN();
+    direct.at(3, 2).b = std::numeric_limits<float>::infinity();
     const NonFiniteValues in_two = replace_non_finite(beauty, aovs);
     EXPECT_EQ(in_two.count, 2);
     EXPECT_EQ(in_two.first_layer, "direct");
     EXPECT_EQ(in_two.first_x, 3);
+    EXPECT_EQ(in_two.first_y, 2);
     beauty.at(2, 2).r = -std::numeric_limits<float>::infinity();
-    aovs[0].image.at(0, 0).r = std::numeric_limits<float>::quiet_NaN();
+    direct.at(0, 0).r = std::numeric_limits<float>::quiet_NaN();
     EXPECT_EQ(replace_non_finite(beauty, aovs).first_layer, "beauty");
 }
 
@@ -51,8 +58,8 @@ TEST(FrameLayers, BlenderNamesAreViewLayerPassAndChannelWithCombinedAlpha) {
     Image beauty(2, 2), alpha(2, 2);
     beauty.at(1, 0) = {0.25f, 0.5f, 0.75f};
     alpha.at(1, 0) = {1, 1, 1};
-    std::vector<NamedImage> aovs{{"direct", Image(2, 2)}, {"influence", Image(2, 2), true}};
-    aovs[1].image.at(0, 1).r = 3;
+    std::vector<NamedImage> aovs{{"direct", Image(2, 2)}, {"influence", GreyImage(2, 2)}};
+    std::get<GreyImage>(aovs[1].image).at(0, 1) = 3;
     const std::string path = (std::filesystem::temp_directory_path() / "steadylight_blender_names.exr").string();
     write_exr(path, blender_exr_layers("View Layer.001", beauty, aovs, alpha), ExrPixelType::float32);
     std::vector<std::string> names;

@@ -55,19 +55,29 @@ ExrPixelType parse_exr_pixel_type(const std::string& name, const std::string& op
 }
 
 void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, ExrPixelType type) {
-    const Image& first = *layers.front().image;
+    SL_CHECK(!layers.empty());
+    const ExrLayer& first = layers.front();
+    const int width = first.image ? first.image->width : first.grey->width;
+    const int height = first.image ? first.image->height : first.grey->height;
     static_assert(sizeof(Rgb) == 3 * sizeof(float));  // r, g, b side by side
     std::vector<ExrChannelValues> channels;
     const auto add_channel = [&](const std::string& name, const Image& image, int component) {
-        SL_CHECK(image.width == first.width && image.height == first.height);
+        SL_CHECK(image.width == width && image.height == height);
         channels.push_back({name, reinterpret_cast<const float*>(image.pixels.data()) + component});
     };
     for (const ExrLayer& layer : layers) {
-        for (const auto& [name, component] : exr_layer_channels(layer.name, layer.scalar, layer.scalar_channel))
-            add_channel(name, *layer.image, component);
+        SL_CHECK((layer.image == nullptr) != (layer.grey == nullptr));
+        for (const auto& [name, component] :
+             exr_layer_channels(layer.name, layer.grey != nullptr, layer.scalar_channel))
+            if (layer.grey) {
+                SL_CHECK(layer.grey->width == width && layer.grey->height == height);
+                channels.push_back({name, layer.grey->values.data(), 1});
+            } else {
+                add_channel(name, *layer.image, component);
+            }
         if (layer.alpha) add_channel(layer.name.empty() ? "A" : layer.name + ".A", *layer.alpha, 0);
     }
-    write_binary_file(path, encode_exr(first.width, first.height, std::move(channels), type));
+    write_binary_file(path, encode_exr(width, height, std::move(channels), type));
 }
 
 void write_exr(const std::string& path, const Image& image) { write_exr(path, {{"", &image}}); }

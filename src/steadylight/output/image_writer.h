@@ -14,15 +14,15 @@
 namespace steadylight {
 
 /// One named image in a multi-layer EXR: channels `<name>.R`, `<name>.G`, `<name>.B`, or plain
-/// R, G, B for the empty name (what every viewer shows first, and Nuke's `rgba` layer). A
-/// `scalar` layer holds a grey image and is stored as the single channel `<name>.Y` (OpenEXR's
-/// name for a luminance-only channel); its value is the image's red channel. With `alpha` (a
-/// grey image, its red channel) the layer also has `<name>.A`, or plain A: the colours are then
-/// premultiplied by it, as OpenEXR's convention has them.
+/// R, G, B for the empty name (what every viewer shows first, and Nuke's `rgba` layer). A grey
+/// layer (`grey` rather than `image`) is stored as the single channel `<name>.Y` (OpenEXR's name
+/// for a luminance-only channel). With `alpha` (a grey image, its red channel) the layer also has
+/// `<name>.A`, or plain A: the colours are then premultiplied by it, as OpenEXR's convention has
+/// them.
 struct ExrLayer {
     std::string name;
-    const Image* image;
-    bool scalar = false;
+    const Image* image;               // null for a grey layer
+    const GreyImage* grey = nullptr;  // a grey layer's values
     const Image* alpha = nullptr;
     std::string scalar_channel = "Y";  // Blender names a grey pass's channel X
 };

@@ -74,10 +74,11 @@ std::vector<std::string> channel_names(const std::vector<ExrChannelInfo>& channe
 
 TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     const std::string path = (fs::temp_directory_path() / "steadylight_layers.exr").string();
-    const Image beauty = gradient(6, 4);
-    Image influence(6, 4);
-    for (size_t i = 0; i < influence.pixels.size(); ++i) influence.pixels[i] = Rgb{1, 1, 1} * float(i);
-    const std::vector<NamedImage> aovs = {{"direct", gradient(6, 4)}, {"influence", influence, true}};
+    // Lines of ten: the halves are made eight at a time and then one by one.
+    const Image beauty = gradient(10, 4);
+    GreyImage influence(10, 4);
+    for (size_t i = 0; i < influence.values.size(); ++i) influence.values[i] = float(i);
+    const std::vector<NamedImage> aovs = {{"direct", gradient(10, 4)}, {"influence", influence}};
     write_exr(path, frame_exr_layers(beauty, aovs));
 
     // OpenEXR lists channels sorted by name.
@@ -87,8 +88,10 @@ TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     for (const ExrChannelInfo& channel : channels) EXPECT_EQ(channel.type, ExrPixelType::half) << channel.name;
     const Image named = read_exr(path, "beauty"), plain = read_exr(path);
     EXPECT_EQ(named.pixels, plain.pixels);
-    const Image back = read_exr(path, "influence");
-    EXPECT_EQ(back.at(5, 3), (Rgb{23, 23, 23}));
+    const std::vector<float> back = read_exr_channel(path, "influence.Y");
+    ASSERT_EQ(back.size(), influence.values.size());
+    for (size_t i = 0; i < back.size(); ++i) EXPECT_EQ(back[i], float(i)) << i;
+    EXPECT_EQ(read_exr(path, "influence").at(9, 3), (Rgb{39, 39, 39}));
 
     // The same channels grouped into layers, in header order.
     const std::vector<ExrLayerInfo> layers = read_exr_layers(path);
@@ -108,7 +111,9 @@ TEST(ImageWriter, FrameExrWithAlphaHasAnAChannelInBothBeautyLayers) {
     const Image beauty = gradient(6, 4);
     Image alpha(6, 4);
     for (size_t i = 0; i < alpha.pixels.size(); ++i) alpha.pixels[i] = Rgb{1, 1, 1} * (float(i % 5) / 4);
-    const std::vector<NamedImage> aovs = {{"direct", gradient(6, 4)}, {"influence", alpha, true}};
+    GreyImage grey(6, 4);
+    for (size_t i = 0; i < grey.values.size(); ++i) grey.values[i] = alpha.pixels[i].r;
+    const std::vector<NamedImage> aovs = {{"direct", gradient(6, 4)}, {"influence", grey}};
     write_exr(path, frame_exr_layers(beauty, aovs, &alpha));
     EXPECT_EQ(channel_names(read_exr_channels(path)),
               (std::vector<std::string>{"A", "B", "G", "R", "beauty.A", "beauty.B", "beauty.G", "beauty.R", "direct.B",

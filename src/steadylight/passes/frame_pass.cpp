@@ -64,13 +64,9 @@ static_assert(slot_count <= max_extra_layers);
 constexpr float max_influence_shown = 1000;
 
 /// The `changed` layer: per pixel the ChangedTerm bits of the terms a frame redid (pixel_reuse.h).
-Image changed_picture(const Camera& camera, const std::vector<uint8_t>& changed) {
-    Image image(camera.width, camera.height);
-    for (int y = 0; y < camera.height; ++y)
-        for (int x = 0; x < camera.width; ++x) {
-            const float bits = float(changed[size_t(y) * size_t(camera.width) + size_t(x)]);
-            image.at(x, y) = {bits, bits, bits};
-        }
+GreyImage changed_picture(const Camera& camera, const std::vector<uint8_t>& changed) {
+    GreyImage image = GreyImage::unfilled(camera.width, camera.height);
+    std::copy(changed.begin(), changed.end(), image.values.begin());
     return image;
 }
 
@@ -219,7 +215,8 @@ ShadedFrame shade_localized(const FrameContext& context, const LocalizedLighting
         [&](const Ray& ray) {
             return gather_from_photons(context, lighting.irradiance, max_radius, visibility, ray).L;
         },
-        visibility, source, analysis == AnalysisLayers::made ? slot_count : 0);
+        visibility, source, analysis == AnalysisLayers::made ? slot_count : 0,
+        1u << influence_slot | 1u << dynamic_slot);
     stats.fallback_gathers += fallbacks;
     stats.gather_rays += gather_rays;
     return shaded;
@@ -310,8 +307,8 @@ void take_localized_layers(ShadedFrame& shaded, const Camera& camera, const Irra
                            LocalizedFrame& out) {
     take_common_layers(shaded, out);
     if (analysis == AnalysisLayers::left_out) return;
-    out.influence = std::move(shaded.extra[influence_slot]);
-    out.dynamic = std::move(shaded.extra[dynamic_slot]);
+    out.influence = std::move(shaded.grey_extra[influence_slot]);
+    out.dynamic = std::move(shaded.grey_extra[dynamic_slot]);
     out.L_y = std::move(shaded.extra[L_y_slot]);
     out.L_t = std::move(shaded.extra[L_t_slot]);
     out.indirect_static = std::move(shaded.extra[indirect_static_slot]);

@@ -28,13 +28,13 @@ enum class StaticCacheUse {
 
 struct LocalizedFrame {
     Image beauty, direct, indirect, caustic, specular;
-    std::optional<Image> alpha;             // with a transparent background (ShadedFrame::alpha)
-    Image indirect_static;                  // L_i from the static cache alone (paper Fig. 1d)
-    Image L_y, L_t;                         // the two estimates, as radiance (Fig. 1e, 1f)
-    Image influence;                        // I relative to the static indirect irradiance (Fig. 4d, 5), at most 1000
-    Image dynamic;                          // the share of a pixel's camera rays that see a dynamic object
-    Image static_records, dynamic_records;  // record positions (Fig. 3)
-    Image changed;  // with a static frame: the ChangedTerm bits of the terms redone (pixel_reuse.h)
+    std::optional<Image> alpha;  // with a transparent background (ShadedFrame::alpha)
+    Image indirect_static;       // L_i from the static cache alone (paper Fig. 1d)
+    Image L_y, L_t;              // the two estimates, as radiance (Fig. 1e, 1f)
+    GreyImage influence;         // I relative to the static indirect irradiance (Fig. 4d, 5), at most 1000
+    GreyImage dynamic;           // the share of a pixel's camera rays that see a dynamic object
+    GreyImage static_records, dynamic_records;  // record positions (Fig. 3)
+    GreyImage changed;  // with a static frame: the ChangedTerm bits of the terms redone (pixel_reuse.h)
     FrameStats stats;
 };
 

@@ -155,13 +155,13 @@ PointFallbacks make_point_fallbacks(const FrameContext& context, const Irradianc
             }};
 }
 
-Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records) {
-    Image picture(camera.width, camera.height);
+GreyImage record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records) {
+    GreyImage picture(camera.width, camera.height);
     for (const IrradianceRecord& record : records) {
         const std::optional<Vec2> film = camera.project(record.p);
         if (!film || film->x < 0 || film->y < 0 || film->x >= float(camera.width) || film->y >= float(camera.height))
             continue;
-        picture.at(int(film->x), int(film->y)) = {1, 1, 1};
+        picture.at(int(film->x), int(film->y)) = 1;
     }
     return picture;
 }

@@ -95,6 +95,6 @@ Rgb cached_irradiance(const IrradianceCache& cache, const SurfacePoint& sp, Vec3
                       std::vector<uint32_t>* used_ids = nullptr);
 
 /// 1 at the pixels where records project, 0 elsewhere (paper Fig. 3).
-Image record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records);
+GreyImage record_picture(const Camera& camera, const std::vector<IrradianceRecord>& records);
 
 }  // namespace steadylight

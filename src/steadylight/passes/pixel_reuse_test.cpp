@@ -283,27 +283,25 @@ struct SolvedScene {
 
 /// Every layer of two frames, bit for bit, but the one that marks the pixels redone.
 void expect_same_layers(const LocalizedFrame& a, const LocalizedFrame& b, const std::string& what) {
-    const std::pair<const char*, Image LocalizedFrame::*> layers[] = {
-        {"beauty", &LocalizedFrame::beauty},
-        {"direct", &LocalizedFrame::direct},
-        {"indirect", &LocalizedFrame::indirect},
-        {"caustic", &LocalizedFrame::caustic},
-        {"specular", &LocalizedFrame::specular},
-        {"indirect_static", &LocalizedFrame::indirect_static},
-        {"L_y", &LocalizedFrame::L_y},
-        {"L_t", &LocalizedFrame::L_t},
-        {"influence", &LocalizedFrame::influence},
-        {"dynamic", &LocalizedFrame::dynamic},
-        {"static_records", &LocalizedFrame::static_records},
-        {"dynamic_records", &LocalizedFrame::dynamic_records}};
-    for (const auto& [name, layer] : layers) {
-        const Image &x = a.*layer, &y = b.*layer;
+    const auto expect_same = [&](const char* name, const auto& x, const auto& y) {
         ASSERT_EQ(x.width, y.width) << what << " " << name;
         int differing = 0;
         for (int py = 0; py < x.height; ++py)
             for (int px = 0; px < x.width; ++px) differing += !(x.at(px, py) == y.at(px, py));
         EXPECT_EQ(differing, 0) << what << " " << name;
-    }
+    };
+    const std::pair<const char*, Image LocalizedFrame::*> colour_layers[] = {
+        {"beauty", &LocalizedFrame::beauty},     {"direct", &LocalizedFrame::direct},
+        {"indirect", &LocalizedFrame::indirect}, {"caustic", &LocalizedFrame::caustic},
+        {"specular", &LocalizedFrame::specular}, {"indirect_static", &LocalizedFrame::indirect_static},
+        {"L_y", &LocalizedFrame::L_y},           {"L_t", &LocalizedFrame::L_t}};
+    const std::pair<const char*, GreyImage LocalizedFrame::*> grey_layers[] = {
+        {"influence", &LocalizedFrame::influence},
+        {"dynamic", &LocalizedFrame::dynamic},
+        {"static_records", &LocalizedFrame::static_records},
+        {"dynamic_records", &LocalizedFrame::dynamic_records}};
+    for (const auto& [name, layer] : colour_layers) expect_same(name, a.*layer, b.*layer);
+    for (const auto& [name, layer] : grey_layers) expect_same(name, a.*layer, b.*layer);
     ASSERT_EQ(a.alpha.has_value(), b.alpha.has_value()) << what;
     if (a.alpha) {
         EXPECT_TRUE(a.alpha->pixels == b.alpha->pixels) << what << " alpha";
@@ -592,9 +590,11 @@ TEST(PixelReuse, FramesWithoutAnalysisLayersGiveTheSameTerms) {
              {&LocalizedFrame::beauty, &LocalizedFrame::direct, &LocalizedFrame::indirect, &LocalizedFrame::caustic,
               &LocalizedFrame::specular})
             EXPECT_TRUE((terms.*layer).pixels == (full[i].*layer).pixels) << frames[i];
-        for (Image LocalizedFrame::*layer : {&LocalizedFrame::L_y, &LocalizedFrame::L_t, &LocalizedFrame::influence,
-                                             &LocalizedFrame::indirect_static, &LocalizedFrame::static_records})
+        for (Image LocalizedFrame::*layer :
+             {&LocalizedFrame::L_y, &LocalizedFrame::L_t, &LocalizedFrame::indirect_static})
             EXPECT_TRUE((terms.*layer).pixels.empty() && !(full[i].*layer).pixels.empty()) << frames[i];
+        for (GreyImage LocalizedFrame::*layer : {&LocalizedFrame::influence, &LocalizedFrame::static_records})
+            EXPECT_TRUE((terms.*layer).values.empty() && !(full[i].*layer).values.empty()) << frames[i];
     }
 }
 
@@ -620,8 +620,8 @@ TEST(PixelReuse, PixelsWithNoTermChangedAreBitIdenticalBetweenFrames) {
     int clear = 0, clear_in_b = 0;
     for (int y = 0; y < a.beauty.height; ++y)
         for (int x = 0; x < a.beauty.width; ++x) {
-            clear_in_b += b.changed.at(x, y).r == 0;
-            if (a.changed.at(x, y).r == 0 && b.changed.at(x, y).r == 0) {
+            clear_in_b += b.changed.at(x, y) == 0;
+            if (a.changed.at(x, y) == 0 && b.changed.at(x, y) == 0) {
                 ++clear;
                 EXPECT_EQ(a.beauty.at(x, y), b.beauty.at(x, y)) << "pixel " << x << "," << y;
             }
@@ -652,7 +652,7 @@ TEST(PixelReuse, TransparentBackgroundKeepsAlphaWithThePixels) {
         int clear = 0, empty = 0, covered = 0;
         for (int y = 0; y < a.beauty.height; ++y)
             for (int x = 0; x < a.beauty.width; ++x)
-                if (a.changed.at(x, y).r == 0 && b.changed.at(x, y).r == 0) {
+                if (a.changed.at(x, y) == 0 && b.changed.at(x, y) == 0) {
                     ++clear;
                     empty += a.alpha->at(x, y).r == 0, covered += a.alpha->at(x, y).r == 1;
                     EXPECT_EQ(a.alpha->at(x, y), b.alpha->at(x, y)) << "pixel " << x << "," << y;
@@ -674,7 +674,7 @@ TEST(PixelReuse, AnotherViewShadesEveryPixel) {
     EXPECT_EQ(s.pixels_reused + s.pixels_looked_up_again + s.pixels_direct_again + s.pixels_redone_but_direct +
                   s.pixels_redone,
               0);
-    EXPECT_EQ(frame.changed.at(5, 5).r, 15.0f);  // every term computed
+    EXPECT_EQ(frame.changed.at(5, 5), 15.0f);  // every term computed
 }
 
 }  // namespace

@@ -361,13 +361,18 @@ void PixelMemo::add(const SurfacePoint& sp, Vec3 n, const Values& values) {
 
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
                         const IndirectIrradiance& indirect, const ReflectedRadiance& reflected, Visibility visibility,
-                        PixelSource* source, int extra_layers) {
+                        PixelSource* source, int extra_layers, unsigned grey_extras) {
     SL_CHECK(extra_layers >= 0 && extra_layers <= max_extra_layers);
     const Camera& camera = context.frame.camera;
     ShadedFrame out;
     for (Image* image : {&out.beauty, &out.direct, &out.indirect, &out.caustic, &out.specular})
         *image = Image::unfilled(camera.width, camera.height);  // every pixel written below
-    for (int e = 0; e < extra_layers; ++e) out.extra[size_t(e)] = Image::unfilled(camera.width, camera.height);
+    const auto is_grey = [grey_extras](int e) { return (grey_extras >> e & 1) != 0; };
+    for (int e = 0; e < extra_layers; ++e)
+        if (is_grey(e))
+            out.grey_extra[size_t(e)] = GreyImage::unfilled(camera.width, camera.height);
+        else
+            out.extra[size_t(e)] = Image::unfilled(camera.width, camera.height);
     if (camera.transparent_background) out.alpha = Image::unfilled(camera.width, camera.height);
     const int n = settings.samples_per_pixel;
     const Shader shader(context, settings, caustic, indirect, reflected, visibility, extra_layers);
@@ -431,7 +436,11 @@ ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& sett
                 out.specular.at(x, y) = sum.specular * inv_n;
                 out.beauty.at(x, y) = sum.sum() * inv_n;
                 if (out.alpha) out.alpha->at(x, y) = Rgb{1, 1, 1} * (sum.covered * inv_n);
-                for (int e = 0; e < extra_layers; ++e) out.extra[size_t(e)].at(x, y) = sum.extra[size_t(e)] * inv_n;
+                for (int e = 0; e < extra_layers; ++e)
+                    if (is_grey(e))
+                        out.grey_extra[size_t(e)].at(x, y) = sum.extra[size_t(e)].r * inv_n;
+                    else
+                        out.extra[size_t(e)].at(x, y) = sum.extra[size_t(e)] * inv_n;
             }
     });
     out.caustic_cpu_s = shader.caustic_cpu_s();

@@ -198,17 +198,21 @@ struct ShadedFrame {
     /// With a transparent background (Camera::transparent_background): the share of each
     /// pixel's camera rays that met a surface, grey. The colours are then premultiplied by it.
     std::optional<Image> alpha;
-    std::array<Image, max_extra_layers> extra;  // the first `extra_layers` of shade_frame(); the rest empty
-    double caustic_cpu_s = 0;                   // time in caustic estimates, summed over threads
+    /// The first `extra_layers` of shade_frame(), each in `extra` or, where it is grey, in
+    /// `grey_extra`; the rest empty.
+    std::array<Image, max_extra_layers> extra;
+    std::array<GreyImage, max_extra_layers> grey_extra;
+    double caustic_cpu_s = 0;  // time in caustic estimates, summed over threads
 };
 
 /// Shades every pixel of the frame, seeing what `visibility` allows (static_only: pixel reuse's
 /// static frame), or, with a `source`, the part of each pixel it asks for. The method's own
-/// layers are pictured for its first `extra_layers` slots (ExtraLayers) only.
+/// layers are pictured for its first `extra_layers` slots (ExtraLayers) only; slot e is grey
+/// (its three channels equal, pictured from the red one) where bit e of `grey_extras` is set.
 ShadedFrame shade_frame(const FrameContext& context, const ShadingSettings& settings, const PhotonMap& caustic,
                         const IndirectIrradiance& indirect, const ReflectedRadiance& reflected,
                         Visibility visibility = Visibility::everything, PixelSource* source = nullptr,
-                        int extra_layers = 0);
+                        int extra_layers = 0, unsigned grey_extras = 0);
 
 /// Moves the shading pass's common layers into a frame that has members of the same names.
 template <class FrameImages>

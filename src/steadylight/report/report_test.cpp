@@ -197,12 +197,13 @@ TEST(Report, ANamedBeautyLayerShowsAsBeauty) {
 
 TEST(Report, AFramesBeautyShowsOnceAndGreyLayersShowToo) {
     const std::string dir = fresh_folder("frame_layers");
-    Image beauty(4, 3), influence(4, 3);
+    Image beauty(4, 3);
     for (Rgb& p : beauty.pixels) p = {0.5f, 0.25f, 0.1f};
-    for (Rgb& p : influence.pixels) p = {1, 1, 1};
+    GreyImage influence(4, 3);
+    std::fill(influence.values.begin(), influence.values.end(), 1.0f);
     // As render writes it: the beauty unnamed and as `beauty`, `influence` as the one channel Y.
     write_exr(frame_file_name(dir, "ball", 0, "exr"),
-              frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence, true}}));
+              frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence}}));
     const std::string html = report_of(dir);
     EXPECT_EQ(count(html, "data-layer=\"beauty\""), 1u);
     EXPECT_EQ(count(html, "<figure class=\"aov\" data-layer=\"influence\">"), 1u);
