@@ -39,8 +39,8 @@ inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& fro
     // First the capsule of the larger radius about the centres' segment, which holds the hull:
     // most spheres are clear of it, and it costs one distance.
     const Vec3 along = to.center - from.center, to_s = s.center - from.center;
-    const float along2 = length2(along);
-    const float t_nearest = std::clamp(dot(to_s, along) / std::max(along2, 1e-30f), 0.0f, 1.0f);
+    const float along2 = length2(along), s_along = dot(to_s, along);
+    const float t_nearest = std::clamp(s_along / std::max(along2, 1e-30f), 0.0f, 1.0f);
     if (length(s.center - (from.center + along * t_nearest)) > s.radius + std::max(from.radius, to.radius) + slack)
         return false;
     const auto gap = [&](float t) {
@@ -48,8 +48,8 @@ inline bool may_meet_segments(const BoundingSphere& s, const BoundingSphere& fro
     };
     float t_least = 0;
     if (along2 > 0) {
-        const float L = std::sqrt(along2), a = dot(to_s, along) / L;
-        const float h = length(to_s - along * (dot(to_s, along) / along2));
+        const float L = std::sqrt(along2), a = s_along / L;
+        const float h = length(to_s - along * (s_along / along2));
         const float k = (to.radius - from.radius) / L;
         if (std::abs(k) < 1) t_least = std::clamp((a + k * h / std::sqrt(1 - k * k)) / L, 0.0f, 1.0f);
     }
