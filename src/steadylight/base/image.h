@@ -10,52 +10,38 @@
 
 namespace steadylight {
 
-struct Image {
+/// Pixels of one kind, row-major from the top-left one.
+template <class Pixel>
+struct PixelImage {
     int width = 0;
     int height = 0;
-    std::vector<Rgb, UnfilledAllocator<Rgb>> pixels;
+    std::vector<Pixel, UnfilledAllocator<Pixel>> pixels;
 
-    Image() = default;
+    PixelImage() = default;
     /// A black image.
-    Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h), Rgb{}) {}
+    PixelImage(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h), Pixel{}) {}
     /// An image whose every pixel the caller writes before anything reads it. Not zeroed first:
     /// at production sizes that is a serial pass over tens of megabytes, mostly page faults,
     /// while the threads that fill the image touch its memory anyway.
-    static Image unfilled(int w, int h) {
-        Image image;
+    static PixelImage unfilled(int w, int h) {
+        PixelImage image;
         image.width = w, image.height = h;
         image.pixels.resize(size_t(w) * size_t(h));
         return image;
     }
-    Rgb& at(int x, int y) { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
-    const Rgb& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+    Pixel& at(int x, int y) { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+    const Pixel& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
 };
 
+using Image = PixelImage<Rgb>;
 /// One value a pixel (a mask, a count, a ratio): a third of an Image's bytes, for the layers
 /// that a colour would hold three times.
-struct GreyImage {
-    int width = 0;
-    int height = 0;
-    std::vector<float, UnfilledAllocator<float>> values;
-
-    GreyImage() = default;
-    /// A black image.
-    GreyImage(int w, int h) : width(w), height(h), values(size_t(w) * size_t(h), 0.0f) {}
-    /// An image whose every pixel the caller writes before anything reads it (Image::unfilled).
-    static GreyImage unfilled(int w, int h) {
-        GreyImage image;
-        image.width = w, image.height = h;
-        image.values.resize(size_t(w) * size_t(h));
-        return image;
-    }
-    float& at(int x, int y) { return values[size_t(y) * size_t(width) + size_t(x)]; }
-    const float& at(int x, int y) const { return values[size_t(y) * size_t(width) + size_t(x)]; }
-};
+using GreyImage = PixelImage<float>;
 
 /// `grey` with its value in each of the three channels (for an 8-bit picture of it).
 inline Image colour_of(const GreyImage& grey) {
     Image image = Image::unfilled(grey.width, grey.height);
-    for (size_t i = 0; i < grey.values.size(); ++i) image.pixels[i] = {grey.values[i], grey.values[i], grey.values[i]};
+    for (size_t i = 0; i < grey.pixels.size(); ++i) image.pixels[i] = {grey.pixels[i], grey.pixels[i], grey.pixels[i]};
     return image;
 }
 
@@ -66,10 +52,12 @@ struct NamedImage {
     std::variant<Image, GreyImage> image;
 
     const GreyImage* grey() const { return std::get_if<GreyImage>(&image); }
-    size_t pixel_count() const { return grey() ? grey()->values.size() : std::get<Image>(image).pixels.size(); }
+    size_t pixel_count() const {
+        return std::visit([](const auto& pixels) { return pixels.pixels.size(); }, image);
+    }
     /// Pixel `i`, row-major; a grey one with its value in each channel.
     Rgb colour_at(size_t i) const {
-        if (const GreyImage* g = grey()) return {g->values[i], g->values[i], g->values[i]};
+        if (const GreyImage* g = grey()) return {g->pixels[i], g->pixels[i], g->pixels[i]};
         return std::get<Image>(image).pixels[i];
     }
 };

@@ -157,7 +157,7 @@ TEST(Localized, SameFramesOnOneOrTwoThreads) {
     tbb::task_arena(1).execute([&] { one = render(scene, {20}); });
     tbb::task_arena(2).execute([&] { two = render(scene, {20}); });
     EXPECT_TRUE(one[0].beauty.pixels == two[0].beauty.pixels);
-    EXPECT_TRUE(one[0].influence.values == two[0].influence.values);
+    EXPECT_TRUE(one[0].influence.pixels == two[0].influence.pixels);
     EXPECT_EQ(one[0].stats.irradiance_records, two[0].stats.irradiance_records);
 }
 
@@ -177,7 +177,7 @@ TEST(Localized, CoarserInfluenceStepSamplesTheSameValues) {
             felt += a.at(x, y) > 0;
         }
     EXPECT_GT(felt, 5);
-    EXPECT_FALSE(a.values == b.values);  // between the shared pixels, the blocks differ
+    EXPECT_FALSE(a.pixels == b.pixels);  // between the shared pixels, the blocks differ
 }
 
 TEST(Localized, InfluenceStepGrowsWithTheImageHeight) {

@@ -45,7 +45,7 @@ LayerValues values_of(Image& image, std::string_view name) {
 }
 
 LayerValues values_of(GreyImage& image, std::string_view name) {
-    return {image.values.data(), image.values.size(), image.width, 1, name};
+    return {image.pixels.data(), image.pixels.size(), image.width, 1, name};
 }
 
 /// Whether every value of `layer` is finite (its exponent bits not all set): a loop without

@@ -71,7 +71,7 @@ void write_exr(const std::string& path, const std::vector<ExrLayer>& layers, Exr
              exr_layer_channels(layer.name, layer.grey != nullptr, layer.scalar_channel))
             if (layer.grey) {
                 SL_CHECK(layer.grey->width == width && layer.grey->height == height);
-                channels.push_back({name, layer.grey->values.data(), 1});
+                channels.push_back({name, layer.grey->pixels.data(), 1});
             } else {
                 add_channel(name, *layer.image, component);
             }

@@ -77,7 +77,7 @@ TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     // Lines of ten: the halves are made eight at a time and then one by one.
     const Image beauty = gradient(10, 4);
     GreyImage influence(10, 4);
-    for (size_t i = 0; i < influence.values.size(); ++i) influence.values[i] = float(i);
+    for (size_t i = 0; i < influence.pixels.size(); ++i) influence.pixels[i] = float(i);
     const std::vector<NamedImage> aovs = {{"direct", gradient(10, 4)}, {"influence", influence}};
     write_exr(path, frame_exr_layers(beauty, aovs));
 
@@ -89,7 +89,7 @@ TEST(ImageWriter, FrameExrHasBeautyAsDefaultAndNamedLayerAndScalarAovsAsY) {
     const Image named = read_exr(path, "beauty"), plain = read_exr(path);
     EXPECT_EQ(named.pixels, plain.pixels);
     const std::vector<float> back = read_exr_channel(path, "influence.Y");
-    ASSERT_EQ(back.size(), influence.values.size());
+    ASSERT_EQ(back.size(), influence.pixels.size());
     for (size_t i = 0; i < back.size(); ++i) EXPECT_EQ(back[i], float(i)) << i;
     EXPECT_EQ(read_exr(path, "influence").at(9, 3), (Rgb{39, 39, 39}));
 
@@ -112,7 +112,7 @@ TEST(ImageWriter, FrameExrWithAlphaHasAnAChannelInBothBeautyLayers) {
     Image alpha(6, 4);
     for (size_t i = 0; i < alpha.pixels.size(); ++i) alpha.pixels[i] = Rgb{1, 1, 1} * (float(i % 5) / 4);
     GreyImage grey(6, 4);
-    for (size_t i = 0; i < grey.values.size(); ++i) grey.values[i] = alpha.pixels[i].r;
+    for (size_t i = 0; i < grey.pixels.size(); ++i) grey.pixels[i] = alpha.pixels[i].r;
     const std::vector<NamedImage> aovs = {{"direct", gradient(6, 4)}, {"influence", grey}};
     write_exr(path, frame_exr_layers(beauty, aovs, &alpha));
     EXPECT_EQ(channel_names(read_exr_channels(path)),

@@ -66,7 +66,7 @@ constexpr float max_influence_shown = 1000;
 /// The `changed` layer: per pixel the ChangedTerm bits of the terms a frame redid (pixel_reuse.h).
 GreyImage changed_picture(const Camera& camera, const std::vector<uint8_t>& changed) {
     GreyImage image = GreyImage::unfilled(camera.width, camera.height);
-    std::copy(changed.begin(), changed.end(), image.values.begin());
+    std::copy(changed.begin(), changed.end(), image.pixels.begin());
     return image;
 }
 

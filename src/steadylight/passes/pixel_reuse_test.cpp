@@ -594,7 +594,7 @@ TEST(PixelReuse, FramesWithoutAnalysisLayersGiveTheSameTerms) {
              {&LocalizedFrame::L_y, &LocalizedFrame::L_t, &LocalizedFrame::indirect_static})
             EXPECT_TRUE((terms.*layer).pixels.empty() && !(full[i].*layer).pixels.empty()) << frames[i];
         for (GreyImage LocalizedFrame::*layer : {&LocalizedFrame::influence, &LocalizedFrame::static_records})
-            EXPECT_TRUE((terms.*layer).values.empty() && !(full[i].*layer).values.empty()) << frames[i];
+            EXPECT_TRUE((terms.*layer).pixels.empty() && !(full[i].*layer).pixels.empty()) << frames[i];
     }
 }
 

@@ -200,7 +200,7 @@ TEST(Report, AFramesBeautyShowsOnceAndGreyLayersShowToo) {
     Image beauty(4, 3);
     for (Rgb& p : beauty.pixels) p = {0.5f, 0.25f, 0.1f};
     GreyImage influence(4, 3);
-    std::fill(influence.values.begin(), influence.values.end(), 1.0f);
+    std::fill(influence.pixels.begin(), influence.pixels.end(), 1.0f);
     // As render writes it: the beauty unnamed and as `beauty`, `influence` as the one channel Y.
     write_exr(frame_file_name(dir, "ball", 0, "exr"),
               frame_exr_layers(beauty, {{"direct", beauty}, {"influence", influence}}));
