@@ -103,11 +103,15 @@ void KeptDirectLight::keep(int x, int y, size_t pixel) {
     const size_t bookkeeping = tile.kept.empty() ? slots * sizeof(std::unique_ptr<std::byte[]>) + slots / 8 : 0;
     const size_t size = whole ? log.bytes().size() : 0;
     // What does not fit is neither kept nor noted: a later frame may log it again if room is left.
-    if (double(m_bytes + bookkeeping + size) > m_max_bytes) return;
+    // The room is taken in one step with the test, so that threads racing for the last of it
+    // never take more than the budget between them.
+    size_t taken = m_bytes.load();
+    do {
+        if (double(taken + bookkeeping + size) > m_max_bytes) return;
+    } while (!m_bytes.compare_exchange_weak(taken, taken + bookkeeping + size));
     if (bookkeeping) {
         tile.kept.resize(slots);
         tile.refused.assign(slots, false);
-        m_bytes += bookkeeping;
     }
     const size_t slot = size_t(slot_of(x, y));
     if (!whole) {
@@ -116,7 +120,6 @@ void KeptDirectLight::keep(int x, int y, size_t pixel) {
     }
     tile.kept[slot] = std::make_unique_for_overwrite<std::byte[]>(size);
     std::copy(log.bytes().begin(), log.bytes().end(), tile.kept[slot].get());
-    m_bytes += size;
     ++m_pixels;
 }
 
